@@ -1,0 +1,51 @@
+"""knitwear: knitted yarn geometry on free-form surfaces (Rust core).
+
+NumPy in, NumPy out, no Blender needed::
+
+    import numpy as np
+    import knitwear
+
+    u, v = np.meshgrid(np.linspace(0, 1, 32), np.linspace(0, 1, 32))
+    pos = np.stack([u * 0.2, v * 0.2, np.zeros_like(u)], axis=-1).astype(np.float32)
+    nrm = np.zeros_like(pos)
+    nrm[..., 2] = 1
+    result = knitwear.knit(knitwear.GridSurface(pos, nrm), knitwear.Pattern.preset("rib_2x2"))
+    result.vertices, result.triangles, result.colors  # (V,3) f32, (T,3) i32, (V,4) f32
+
+Lengths are in scene units (metres by default); the gauge is stitches and rows per 10 cm.
+Every error a user can cause is a :class:`KnitError`.
+"""
+
+from ._core import (
+    BudgetError,
+    ColorPattern,
+    GridSurface,
+    InternalError,
+    KnitError,
+    KnitResult,
+    MeshSurface,
+    ParameterError,
+    Pattern,
+    PatternError,
+    SurfaceError,
+    __version__,
+    knit,
+    measure_clearance,
+)
+
+__all__ = [
+    "BudgetError",
+    "ColorPattern",
+    "GridSurface",
+    "InternalError",
+    "KnitError",
+    "KnitResult",
+    "MeshSurface",
+    "ParameterError",
+    "Pattern",
+    "PatternError",
+    "SurfaceError",
+    "__version__",
+    "knit",
+    "measure_clearance",
+]

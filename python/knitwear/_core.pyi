@@ -1,0 +1,121 @@
+"""Type stubs of the compiled core (``knitwear._core``). Lengths are in scene units."""
+
+from typing import Any, Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class KnitError(Exception):
+    """Base class of every error a user can cause (bad surface, pattern, setting, budget)."""
+
+class SurfaceError(KnitError):
+    """The surface cannot be knitted: NaN/inf coordinates, wrong buffer shapes, no area."""
+
+class PatternError(KnitError):
+    """A stitch or colour pattern that does not parse (names the row and column)."""
+
+class ParameterError(KnitError):
+    """A setting out of range (zero gauge, negative radius, too few ring segments)."""
+
+class BudgetError(KnitError):
+    """The output would exceed the memory budget; nothing was allocated."""
+
+class InternalError(KnitError):
+    """A bug in knitwear (a caught panic). Please report it."""
+
+class GridSurface:
+    """Positions and normals sampled on a regular (u,v) grid, e.g. a NURBS surface.
+
+    ``positions[i, j]`` is s(u_j, v_i) with u_j = j/(C-1), v_i = i/(R-1): float32 (R, C, 3).
+    With ``cyclic_u`` the last column wraps to the first (u_j = j/C); a duplicated seam column
+    (equal to the first) is detected and dropped. Likewise for ``cyclic_v`` and rows.
+    """
+
+    def __init__(
+        self,
+        positions: npt.NDArray[np.float32],
+        normals: npt.NDArray[np.float32],
+        cyclic_u: bool = False,
+        cyclic_v: bool = False,
+    ) -> None: ...
+    @property
+    def extent(self) -> tuple[float, float]:
+        """Mean length along u (a course) and along v (a wale), scene units."""
+
+class MeshSurface:
+    """A triangle mesh with per-corner UVs; (u,v) is the UV map."""
+
+    def __init__(
+        self,
+        positions: npt.NDArray[np.float32],
+        normals: npt.NDArray[np.float32],
+        triangles: npt.NDArray[Any],
+        uvs: npt.NDArray[np.float32],
+    ) -> None: ...
+    @property
+    def extent(self) -> tuple[float, float]: ...
+
+class Pattern:
+    """A stitch pattern: a chart of knit and purl stitches, repeated over the surface."""
+
+    @staticmethod
+    def preset(name: str) -> Pattern: ...
+    @staticmethod
+    def from_chart(text: str) -> Pattern: ...
+    @staticmethod
+    def presets() -> list[str]: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...
+    def chart(self) -> str: ...
+
+class ColorPattern:
+    """A palette (linear RGB, 0..1) and a chart of palette indices (digits 0-9, then a-z),
+    one line per row, top line = top row, repeated over the surface."""
+
+    def __init__(self, palette: Sequence[Sequence[float]], chart: str = "0") -> None: ...
+    @staticmethod
+    def stripes(palette: Sequence[Sequence[float]], rows_each: int = 2) -> ColorPattern: ...
+
+class KnitResult:
+    vertices: npt.NDArray[np.float32]  # (V, 3)
+    triangles: npt.NDArray[np.int32]  # (T, 3)
+    edges: npt.NDArray[np.int32]  # (E, 2), every edge of the triangles exactly once
+    corner_edges: npt.NDArray[np.int32]  # (3T,), edge from corner k to the next in its face
+    colors: npt.NDArray[np.float32]  # (V, 4) linear RGBA per vertex
+    centerline_points: npt.NDArray[np.float32]  # (P, 3)
+    course_offsets: npt.NDArray[np.int64]  # (Y+1,), yarn piece i = points[o[i]:o[i+1]]
+    yarn_course: npt.NDArray[np.int32]  # (Y,), the course (row) each yarn piece belongs to
+    yarn_closed: npt.NDArray[np.bool_]  # (Y,), whether each piece closes on itself
+    yarn_radius: float
+    stats: dict[str, Any]
+
+def knit(
+    surface: GridSurface | MeshSurface,
+    pattern: Pattern,
+    *,
+    courses: int | None = None,
+    wales: int | None = None,
+    gauge: tuple[float, float] | None = None,
+    yarn_radius: float | None = None,
+    fluffiness: float = 0.5,
+    ring_segments: int = 6,
+    samples_per_loop: int = 16,
+    tension: float = 0.0,
+    seed: int = 0,
+    colors: ColorPattern | None = None,
+    color_image: npt.NDArray[np.float32] | None = None,
+    color_variation: float = 0.15,
+    threads: int | None = None,
+    budget_bytes: int | None = None,
+    measure_clearance: bool = False,
+) -> KnitResult: ...
+
+def measure_clearance(result: KnitResult) -> tuple[float, float]:
+    """(min, 1st percentile) centreline clearance in yarn diameters."""
+

@@ -1,0 +1,199 @@
+//! Fluffy triangle bundles (seed 000, section 2.5, figure 7).
+//!
+//! A ring of `m` points is swept along the centreline (ring `i` around sample `i`). Between
+//! consecutive rings L1, L2 the paper's bundle has `m + n` triangles (here `n = m`): each edge
+//! of L1 with a randomly chosen vertex of L2, and each edge of L2 with a randomly chosen vertex
+//! of L1. The chosen vertex is copied and pushed outward along its ring direction by a random
+//! fraction of `fluffiness * radius`, so each triangle owns its apex: the random apexes make the
+//! fibrous reflectance and the pushes the down around the yarn.
+//!
+//! Layout of one yarn piece with `R` rings and `Q` ring pairs (`Q = R - 1` open, `R` closed):
+//! vertices `[R*m ring vertices][Q*2m apex vertices]`, triangles `Q*2m` (pair `q` owns
+//! triangles `q*2m..(q+1)*2m`: first the L1 edges, then the L2 edges), edges
+//! `[R*m ring edges][2 per triangle: corner 1 -> apex, apex -> corner 0]`. Every triangle is
+//! `(ring vertex, ring vertex, apex)` wound so its normal points away from the yarn axis.
+//!
+//! Randomness is drawn from a generator seeded by (seed, course, wale) of the stitch that owns
+//! the ring pair, in ring order: the result does not depend on threads, on other stitches, or
+//! on which piece a stitch ends up in.
+
+use std::f32::consts::TAU;
+
+use glam::Vec3;
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use super::frames::ring_frame;
+
+/// Settings of the swept yarn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BundleSettings {
+    /// Yarn radius, scene units.
+    pub radius: f32,
+    /// Points per ring, at least 3. Default: 6.
+    pub ring_segments: usize,
+    /// Outward push of apexes as a fraction of the radius (0 = a plain randomised tube).
+    pub fluffiness: f32,
+    /// Relative random brightness variation of vertex colours, in [0, 1].
+    pub color_variation: f32,
+    pub seed: u64,
+}
+
+/// Element counts of one piece's bundle (closed form, for preallocation and budgets).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct BundleCounts {
+    pub vertices: usize,
+    pub triangles: usize,
+    pub edges: usize,
+}
+
+/// Counts for a piece with `rings` rings of `m` points.
+pub fn bundle_counts(rings: usize, m: usize, closed: bool) -> BundleCounts {
+    let pairs = if closed {
+        rings
+    } else {
+        rings.saturating_sub(1)
+    };
+    let triangles = pairs * 2 * m;
+    BundleCounts {
+        vertices: rings * m + triangles,
+        triangles,
+        edges: rings * m + 2 * triangles,
+    }
+}
+
+/// One piece's slices of the output buffers, and where its vertices and edges start in the
+/// whole mesh (indices written are global).
+pub struct PieceBuffers<'a> {
+    pub vertex_base: usize,
+    pub edge_base: usize,
+    /// `3 * vertices` floats.
+    pub positions: &'a mut [f32],
+    /// `4 * vertices` floats, linear RGBA.
+    pub colors: &'a mut [f32],
+    /// `3 * triangles` vertex indices.
+    pub corner_verts: &'a mut [i32],
+    /// `3 * triangles` edge indices (edge from corner k to corner k+1).
+    pub corner_edges: &'a mut [i32],
+    /// `2 * edges` vertex indices.
+    pub edge_verts: &'a mut [i32],
+}
+
+/// A stable 64-bit mix of the seed and a stitch's (course, wale) (SplitMix64 finaliser).
+pub fn stitch_seed(seed: u64, course: usize, wale: usize) -> u64 {
+    let mut z = seed
+        ^ (course as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ (wale as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// Builds the bundle of one yarn piece into `out`.
+///
+/// `points`/`normals`: the centreline and the surface normal under each sample; `owner[i]`:
+/// (course, wale) of the stitch that sample `i` belongs to; `color_of(course, wale)`: the
+/// stitch's linear RGB colour.
+pub fn build_bundle(
+    points: &[Vec3],
+    normals: &[Vec3],
+    owner: &dyn Fn(usize) -> (usize, usize),
+    color_of: &dyn Fn(usize, usize) -> [f32; 3],
+    closed: bool,
+    settings: &BundleSettings,
+    out: &mut PieceBuffers,
+) {
+    let m = settings.ring_segments;
+    let rings = points.len();
+    let counts = bundle_counts(rings, m, closed);
+    let pairs = counts.triangles / (2 * m);
+    let r = settings.radius;
+    let (cos, sin): (Vec<f32>, Vec<f32>) = (0..m)
+        .map(|k| TAU * k as f32 / m as f32)
+        .map(|a| (a.cos(), a.sin()))
+        .unzip();
+
+    // Ring directions, kept for the apexes.
+    let mut dirs = vec![Vec3::ZERO; rings * m];
+    for i in 0..rings {
+        let (_, a, b) = ring_frame(points, normals, i, closed);
+        for k in 0..m {
+            let d = cos[k] * a + sin[k] * b;
+            dirs[i * m + k] = d;
+            let p = points[i] + r * d;
+            out.positions[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&p.to_array());
+        }
+    }
+
+    // Ring edges.
+    for i in 0..rings {
+        for k in 0..m {
+            let e = i * m + k;
+            out.edge_verts[2 * e] = (out.vertex_base + i * m + k) as i32;
+            out.edge_verts[2 * e + 1] = (out.vertex_base + i * m + (k + 1) % m) as i32;
+        }
+    }
+
+    let variation = settings.color_variation.clamp(0.0, 1.0);
+    let shade = |rng: &mut ChaCha8Rng, c: [f32; 3]| -> [f32; 4] {
+        let f = 1.0 + variation * (2.0 * rng.random::<f32>() - 1.0);
+        [c[0] * f, c[1] * f, c[2] * f, 1.0]
+    };
+
+    let apex_base = rings * m;
+    let mut current: Option<(usize, usize)> = None;
+    let mut rng = ChaCha8Rng::seed_from_u64(0);
+    for i in 0..rings {
+        let (course, wale) = owner(i);
+        if current != Some((course, wale)) {
+            current = Some((course, wale));
+            rng = ChaCha8Rng::seed_from_u64(stitch_seed(settings.seed, course, wale));
+        }
+        let color = color_of(course, wale);
+        for k in 0..m {
+            let c = shade(&mut rng, color);
+            out.colors[4 * (i * m + k)..4 * (i * m + k) + 4].copy_from_slice(&c);
+        }
+        if i >= pairs {
+            continue;
+        }
+        let j = (i + 1) % rings;
+        // Two halves: the edges of ring i with apexes on ring j, then the reverse.
+        for half in 0..2 {
+            let (edge_ring, apex_ring) = if half == 0 { (i, j) } else { (j, i) };
+            for k in 0..m {
+                let tri = i * 2 * m + half * m + k;
+                let pick = rng.random_range(0..m);
+                let push = 1.0 + settings.fluffiness * rng.random::<f32>();
+                let apex_dir = dirs[apex_ring * m + pick];
+                let apex = points[apex_ring] + r * push * apex_dir;
+                let av = apex_base + tri;
+                out.positions[3 * av..3 * av + 3].copy_from_slice(&apex.to_array());
+                let ac = shade(&mut rng, color);
+                out.colors[4 * av..4 * av + 4].copy_from_slice(&ac);
+
+                let (v0, v1) = if half == 0 {
+                    (edge_ring * m + k, edge_ring * m + (k + 1) % m)
+                } else {
+                    // Reversed so the face normal points outward (see the module docs).
+                    (edge_ring * m + (k + 1) % m, edge_ring * m + k)
+                };
+                let ring_edge = edge_ring * m + k;
+                let e1 = rings * m + 2 * tri;
+                let e2 = e1 + 1;
+                let vb = out.vertex_base;
+                let eb = out.edge_base;
+                out.corner_verts[3 * tri] = (vb + v0) as i32;
+                out.corner_verts[3 * tri + 1] = (vb + v1) as i32;
+                out.corner_verts[3 * tri + 2] = (vb + av) as i32;
+                out.corner_edges[3 * tri] = (eb + ring_edge) as i32;
+                out.corner_edges[3 * tri + 1] = (eb + e1) as i32;
+                out.corner_edges[3 * tri + 2] = (eb + e2) as i32;
+                out.edge_verts[2 * e1] = (vb + v1) as i32;
+                out.edge_verts[2 * e1 + 1] = (vb + av) as i32;
+                out.edge_verts[2 * e2] = (vb + av) as i32;
+                out.edge_verts[2 * e2 + 1] = (vb + v0) as i32;
+            }
+        }
+    }
+}

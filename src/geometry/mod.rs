@@ -1,0 +1,7 @@
+//! Geometry swept along the yarn centrelines: fluffy triangle bundles (seed 000, section 2.5).
+
+mod bundle;
+mod frames;
+
+pub use bundle::{build_bundle, bundle_counts, BundleCounts, BundleSettings, PieceBuffers};
+pub use frames::ring_frame;

@@ -1,0 +1,528 @@
+//! The whole pipeline: surface -> lattice -> skeleton -> yarn bundles -> flat buffers in the
+//! dtypes Blender's `foreach_set` takes (float32 positions and colours, int32 indices).
+
+use std::time::Instant;
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::budget::{self, OutputSize};
+use crate::error::{KnitError, Result};
+use crate::geometry::{build_bundle, bundle_counts, BundleSettings, PieceBuffers};
+use crate::lattice::{Lattice, ROW_OVERHANG};
+use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
+use crate::parallel::{run_in_pool, split_lengths};
+use crate::pattern::{ColorPattern, StitchPattern};
+use crate::skeleton::{
+    built_stitches, sample_piece, tuning, yarn_pieces, SplineSampling, YarnPiece,
+};
+use crate::surface::Surface;
+
+/// Gauge used when neither counts nor a gauge are given: 20 stitches and 28 rows per 10 cm
+/// (a worsted-weight yarn on 4.5 mm needles).
+pub const DEFAULT_GAUGE: (f32, f32) = (20.0, 28.0);
+/// Default yarn radius as a fraction of the stitch width: a diameter of a fifth of a stitch
+/// (thinner yarn looks sparse; this is where the tuned offsets clear best).
+pub const DEFAULT_RADIUS_PER_STITCH_WIDTH: f32 = 0.1;
+/// Default yarn colour (linear RGB): a warm oatmeal wool.
+pub const DEFAULT_YARN_COLOR: [f32; 3] = [0.55, 0.42, 0.30];
+/// Most stitches along one direction.
+pub const MAX_STITCHES_PER_DIRECTION: usize = 1_000_000;
+
+/// An image sampled per stitch at the tile centre: `(u, v)` maps to pixel
+/// `(u * width, v * height)`, repeated; row 0 is the bottom row (Blender's pixel order).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColorImage {
+    pub width: usize,
+    pub height: usize,
+    /// 3 (RGB) or 4 (RGBA, alpha ignored).
+    pub channels: usize,
+    /// `height * width * channels` linear values.
+    pub pixels: Vec<f32>,
+}
+
+impl ColorImage {
+    pub fn new(width: usize, height: usize, channels: usize, pixels: Vec<f32>) -> Result<Self> {
+        if width == 0 || height == 0 || !(3..=4).contains(&channels) {
+            return Err(KnitError::Parameter(format!(
+                "a colour image must be (height, width, 3 or 4) with both sizes at least 1, \
+                 not ({height}, {width}, {channels})"
+            )));
+        }
+        if pixels.len() != width * height * channels {
+            return Err(KnitError::Parameter(
+                "colour image buffer has the wrong length".into(),
+            ));
+        }
+        if pixels.iter().any(|p| !p.is_finite()) {
+            return Err(KnitError::Parameter(
+                "the colour image has NaN or infinite pixels".into(),
+            ));
+        }
+        Ok(Self {
+            width,
+            height,
+            channels,
+            pixels,
+        })
+    }
+
+    /// Bilinear sample at (u,v), repeating.
+    pub fn sample(&self, uv: Vec2) -> [f32; 3] {
+        let x = uv.x * self.width as f32 - 0.5;
+        let y = uv.y * self.height as f32 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let px = |xi: i64, yi: i64| {
+            let xi = xi.rem_euclid(self.width as i64) as usize;
+            let yi = yi.rem_euclid(self.height as i64) as usize;
+            let o = (yi * self.width + xi) * self.channels;
+            Vec3::new(self.pixels[o], self.pixels[o + 1], self.pixels[o + 2])
+        };
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let c = (px(x0, y0) * (1.0 - fx) + px(x0 + 1, y0) * fx) * (1.0 - fy)
+            + (px(x0, y0 + 1) * (1.0 - fx) + px(x0 + 1, y0 + 1) * fx) * fy;
+        c.max(Vec3::ZERO).to_array()
+    }
+}
+
+/// Every setting of a knit. Lengths in scene units.
+#[derive(Debug, Clone)]
+pub struct KnitParams {
+    /// Rows of stitches (along v). `None`: from the gauge.
+    pub courses: Option<usize>,
+    /// Columns of stitches (along u). `None`: from the gauge.
+    pub wales: Option<usize>,
+    /// Stitches and rows per 10 cm (0.1 scene units), measured on the surface. Used for the
+    /// counts not given. Default: [`DEFAULT_GAUGE`].
+    pub gauge: Option<(f32, f32)>,
+    /// Yarn radius. Default: [`DEFAULT_RADIUS_PER_STITCH_WIDTH`] of the stitch width.
+    pub yarn_radius: Option<f32>,
+    /// Apex push as a fraction of the radius, 0..=4. Default: 0.5.
+    pub fluffiness: f32,
+    /// Points per yarn ring, 3..=64. Default: 6.
+    pub ring_segments: usize,
+    /// Centreline samples per stitch, 6..=256. Default: 16.
+    pub samples_per_loop: usize,
+    /// Cardinal spline tension, 0..1 (0: Catmull-Rom). Default: 0.
+    pub tension: f32,
+    pub seed: u64,
+    /// Colours per stitch from a palette chart. Default: one yarn colour.
+    pub colors: Option<ColorPattern>,
+    /// Colours per stitch from an image (wins over `colors`).
+    pub color_image: Option<ColorImage>,
+    /// Random brightness variation of vertex colours, 0..=1. Default: 0.15.
+    pub color_variation: f32,
+    /// Threads of the private pool. Default: all cores.
+    pub threads: Option<usize>,
+    /// Refuse outputs larger than this many bytes. Default: [`budget::DEFAULT_BUDGET_BYTES`].
+    pub budget_bytes: u64,
+    /// Also measure the clearance of the result (costs about as much as the knit itself).
+    pub measure_clearance: bool,
+}
+
+impl Default for KnitParams {
+    fn default() -> Self {
+        Self {
+            courses: None,
+            wales: None,
+            gauge: None,
+            yarn_radius: None,
+            fluffiness: 0.5,
+            ring_segments: 6,
+            samples_per_loop: 16,
+            tension: 0.0,
+            seed: 0,
+            colors: None,
+            color_image: None,
+            color_variation: 0.15,
+            threads: None,
+            budget_bytes: budget::DEFAULT_BUDGET_BYTES,
+            measure_clearance: false,
+        }
+    }
+}
+
+/// Figures about a knit.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct KnitStats {
+    pub courses: usize,
+    pub wales: usize,
+    /// Stitches built.
+    pub stitches: usize,
+    /// Stitches not built because part of them had no surface (outside every UV island).
+    pub stitches_skipped: usize,
+    pub vertices: usize,
+    pub triangles: usize,
+    pub yarn_pieces: usize,
+    /// Stitch width and height measured on the surface (scene units).
+    pub stitch_width: f32,
+    pub stitch_height: f32,
+    /// Clearance of the tuned offsets on a flat patch, in yarn diameters.
+    pub flat_clearance: f32,
+    /// Clearance of this result (min, 1st percentile) in diameters, if measured.
+    pub clearance: Option<(f32, f32)>,
+    /// Seconds spent in the core.
+    pub seconds: f64,
+}
+
+/// A knit, in flat buffers.
+#[derive(Debug, Clone, Default)]
+pub struct KnitOutput {
+    /// `(V, 3)` vertex positions, scene units, the surface's object space.
+    pub positions: Vec<f32>,
+    /// `(V, 4)` linear RGBA.
+    pub colors: Vec<f32>,
+    /// `(T, 3)` vertex indices.
+    pub triangles: Vec<i32>,
+    /// `(3T,)` edge from corner k to corner k+1 of each triangle.
+    pub corner_edges: Vec<i32>,
+    /// `(E, 2)` vertex indices.
+    pub edges: Vec<i32>,
+    /// `(P, 3)` yarn centreline samples.
+    pub centerline: Vec<f32>,
+    /// `(Y + 1,)`: yarn piece `i` is samples `offsets[i]..offsets[i + 1]`.
+    pub yarn_offsets: Vec<i64>,
+    /// `(Y,)` the course of each yarn piece.
+    pub yarn_course: Vec<i32>,
+    /// `(Y,)` whether each yarn piece is closed (a whole course round a cyclic-u surface).
+    pub yarn_closed: Vec<bool>,
+    pub yarn_radius: f32,
+    pub stats: KnitStats,
+}
+
+fn check_range<T: PartialOrd + std::fmt::Display + Copy>(
+    name: &str,
+    value: T,
+    lo: T,
+    hi: T,
+) -> Result<()> {
+    if value >= lo && value <= hi {
+        Ok(())
+    } else {
+        Err(KnitError::Parameter(format!(
+            "{name} must be in {lo}..={hi}, not {value}"
+        )))
+    }
+}
+
+fn validate(p: &KnitParams) -> Result<()> {
+    check_range("fluffiness", p.fluffiness, 0.0, 4.0)?;
+    check_range("ring segments", p.ring_segments, 3, 64)?;
+    check_range("samples per loop", p.samples_per_loop, 6, 256)?;
+    check_range("spline tension", p.tension, 0.0, 0.99)?;
+    check_range("colour variation", p.color_variation, 0.0, 1.0)?;
+    for (name, n) in [("courses", p.courses), ("wales", p.wales)] {
+        if let Some(n) = n {
+            check_range(name, n, 1, MAX_STITCHES_PER_DIRECTION)?;
+        }
+    }
+    if let Some((s, r)) = p.gauge {
+        if !(s.is_finite() && r.is_finite() && s > 0.0 && r > 0.0) {
+            return Err(KnitError::Parameter(format!(
+                "gauge must be positive stitches and rows per 10 cm, not ({s}, {r})"
+            )));
+        }
+    }
+    if let Some(r) = p.yarn_radius {
+        if !(r.is_finite() && r > 0.0) {
+            return Err(KnitError::Parameter(format!(
+                "yarn radius must be positive, not {r}"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Stitch counts from explicit counts or the gauge and the surface's extent.
+fn stitch_counts(surface: &dyn Surface, p: &KnitParams) -> Result<(usize, usize)> {
+    let (len_u, len_v) = surface.extent();
+    let (st, rows) = p.gauge.unwrap_or(DEFAULT_GAUGE);
+    let from_gauge = |len: f32, per10: f32, what: &str| -> Result<usize> {
+        let n = (len as f64 * per10 as f64 / 0.1).round();
+        if !n.is_finite() || n > MAX_STITCHES_PER_DIRECTION as f64 {
+            return Err(KnitError::Budget(format!(
+                "the gauge gives {n:.0} {what} (surface {len} long); at most \
+                 {MAX_STITCHES_PER_DIRECTION} are allowed: use a coarser gauge"
+            )));
+        }
+        Ok((n as usize).max(1))
+    };
+    let wales = match p.wales {
+        Some(n) => n,
+        None => from_gauge(len_u, st, "stitches per course")?,
+    };
+    let courses = match p.courses {
+        Some(n) => n,
+        None => from_gauge(len_v, rows, "rows")?,
+    };
+    Ok((courses, wales))
+}
+
+/// Knits `pattern` over `surface`.
+pub fn knit(surface: &dyn Surface, pattern: &StitchPattern, p: &KnitParams) -> Result<KnitOutput> {
+    let start = Instant::now();
+    validate(p)?;
+    let (len_u, len_v) = surface.extent();
+    if !(len_u.is_finite() && len_v.is_finite() && len_u > 0.0 && len_v > 0.0) {
+        return Err(KnitError::Surface(format!(
+            "the surface has no extent to knit over (lengths {len_u} x {len_v} along u and v)"
+        )));
+    }
+    let (courses, wales) = stitch_counts(surface, p)?;
+    let m = p.ring_segments;
+    let s = p.samples_per_loop;
+    let stitches = courses as u64 * wales as u64;
+    budget::check(
+        &OutputSize::upper_bound(stitches, s as u64, m as u64),
+        p.budget_bytes,
+        stitches,
+    )?;
+
+    let cyclic_v = surface.cyclic_v();
+    let stitch_width = len_u / wales as f32;
+    let stitch_height = if cyclic_v {
+        len_v / courses as f32
+    } else {
+        len_v / (courses as f32 + 2.0 * ROW_OVERHANG)
+    };
+    let radius = p
+        .yarn_radius
+        .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * stitch_width);
+    if 2.0 * radius > stitch_width.min(2.0 * stitch_height) {
+        return Err(KnitError::Parameter(format!(
+            "the yarn ({:.4} thick) is thicker than a stitch ({stitch_width:.4} x \
+             {stitch_height:.4}): use a thinner yarn or fewer stitches",
+            2.0 * radius
+        )));
+    }
+    let (offsets, flat_clearance) = tuning::tuned_offsets(
+        pattern,
+        stitch_width,
+        stitch_height,
+        2.0 * radius,
+        p.tension,
+    );
+
+    let lattice = Lattice::regular(
+        surface.domain(),
+        courses,
+        wales,
+        surface.cyclic_u(),
+        cyclic_v,
+    );
+    let sampling = SplineSampling {
+        samples_per_loop: s,
+        tension: p.tension,
+    };
+    let bundle = BundleSettings {
+        radius,
+        ring_segments: m,
+        fluffiness: p.fluffiness,
+        color_variation: p.color_variation,
+        seed: p.seed,
+    };
+
+    run_in_pool(p.threads, || {
+        let built = built_stitches(surface, &lattice);
+        let pieces = yarn_pieces(&lattice, &built);
+        let built_count = built.iter().filter(|b| **b).count();
+        build(
+            surface, pattern, p, &lattice, &pieces, &offsets, &sampling, &bundle,
+        )
+        .map(|mut out| {
+            out.yarn_radius = radius;
+            out.stats.courses = courses;
+            out.stats.wales = wales;
+            out.stats.stitches = built_count;
+            out.stats.stitches_skipped = courses * wales - built_count;
+            out.stats.stitch_width = stitch_width;
+            out.stats.stitch_height = stitch_height;
+            out.stats.flat_clearance = flat_clearance;
+            if p.measure_clearance {
+                let c = measure(&out);
+                out.stats.clearance = Some((c.0, c.1));
+            }
+            out.stats.seconds = start.elapsed().as_secs_f64();
+            out
+        })
+    })?
+}
+
+/// Clearance (min, p01) of a finished knit, in yarn diameters.
+pub fn measure(out: &KnitOutput) -> (f32, f32) {
+    let pts: &[Vec3] = vec3_slice(&out.centerline);
+    let yarns: Vec<YarnPolyline> = out
+        .yarn_offsets
+        .windows(2)
+        .zip(&out.yarn_closed)
+        .map(|(w, &closed)| YarnPolyline {
+            points: &pts[w[0] as usize..w[1] as usize],
+            closed,
+        })
+        .collect();
+    let c = clearance(
+        &yarns,
+        2.0 * out.yarn_radius,
+        DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
+        3.0,
+    );
+    (c.min, c.p01)
+}
+
+fn vec3_slice(v: &[f32]) -> &[Vec3] {
+    // Vec3 is three packed f32 (glam's non-SIMD Vec3), so a flat f32 buffer of 3N values is
+    // N Vec3s.
+    let n = v.len() / 3;
+    // SAFETY: Vec3 is #[repr(C)] { x, y, z: f32 }, size 12, align 4, like [f32; 3].
+    unsafe { std::slice::from_raw_parts(v.as_ptr().cast::<Vec3>(), n) }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn build(
+    surface: &dyn Surface,
+    pattern: &StitchPattern,
+    p: &KnitParams,
+    lattice: &Lattice,
+    pieces: &[YarnPiece],
+    offsets: &crate::skeleton::NormalOffsets,
+    sampling: &SplineSampling,
+    bundle: &BundleSettings,
+) -> Result<KnitOutput> {
+    let m = bundle.ring_segments;
+    let samples: Vec<usize> = pieces
+        .iter()
+        .map(|pc| pc.sample_count(sampling.samples_per_loop))
+        .collect();
+    let counts: Vec<_> = pieces
+        .iter()
+        .zip(&samples)
+        .map(|(pc, &n)| bundle_counts(n, m, pc.closed))
+        .collect();
+    let total = OutputSize {
+        vertices: counts.iter().map(|c| c.vertices as u64).sum(),
+        triangles: counts.iter().map(|c| c.triangles as u64).sum(),
+        edges: counts.iter().map(|c| c.edges as u64).sum(),
+        samples: samples.iter().map(|&n| n as u64).sum(),
+    };
+    let stitches: u64 = pieces.iter().map(|pc| pc.stitches as u64).sum();
+    budget::check(&total, p.budget_bytes, stitches)?;
+
+    let n_samples = total.samples as usize;
+    let mut points = vec![Vec3::ZERO; n_samples];
+    let mut normals = vec![Vec3::ZERO; n_samples];
+    let mut owner = vec![0u32; n_samples];
+    {
+        let pts = split_lengths(&mut points, &samples);
+        let nrm = split_lengths(&mut normals, &samples);
+        let own = split_lengths(&mut owner, &samples);
+        pieces
+            .par_iter()
+            .zip(pts)
+            .zip(nrm)
+            .zip(own)
+            .for_each(|(((pc, a), b), c)| {
+                sample_piece(surface, lattice, pattern, offsets, sampling, pc, a, b, c);
+            });
+    }
+
+    let nv = total.vertices as usize;
+    let nt = total.triangles as usize;
+    let ne = total.edges as usize;
+    let mut out = KnitOutput {
+        positions: vec![0.0; 3 * nv],
+        colors: vec![0.0; 4 * nv],
+        triangles: vec![0; 3 * nt],
+        corner_edges: vec![0; 3 * nt],
+        edges: vec![0; 2 * ne],
+        ..Default::default()
+    };
+
+    let solid = ColorPattern::solid(DEFAULT_YARN_COLOR)?;
+    let colors = p.colors.as_ref().unwrap_or(&solid);
+    let image = p.color_image.as_ref();
+    let color_of = |course: usize, wale: usize| -> [f32; 3] {
+        match image {
+            Some(img) => img.sample(lattice.tile_center(course, wale)),
+            None => colors.color(course, wale),
+        }
+    };
+
+    let (mut vbase, mut ebase) = (
+        Vec::with_capacity(pieces.len()),
+        Vec::with_capacity(pieces.len()),
+    );
+    let (mut v, mut e) = (0usize, 0usize);
+    for c in &counts {
+        vbase.push(v);
+        ebase.push(e);
+        v += c.vertices;
+        e += c.edges;
+    }
+    let pos = split_lengths(
+        &mut out.positions,
+        &counts.iter().map(|c| 3 * c.vertices).collect::<Vec<_>>(),
+    );
+    let col = split_lengths(
+        &mut out.colors,
+        &counts.iter().map(|c| 4 * c.vertices).collect::<Vec<_>>(),
+    );
+    let tri = split_lengths(
+        &mut out.triangles,
+        &counts.iter().map(|c| 3 * c.triangles).collect::<Vec<_>>(),
+    );
+    let ced = split_lengths(
+        &mut out.corner_edges,
+        &counts.iter().map(|c| 3 * c.triangles).collect::<Vec<_>>(),
+    );
+    let edg = split_lengths(
+        &mut out.edges,
+        &counts.iter().map(|c| 2 * c.edges).collect::<Vec<_>>(),
+    );
+    let pts = split_lengths(&mut points, &samples);
+    let nrm = split_lengths(&mut normals, &samples);
+    let own = split_lengths(&mut owner, &samples);
+    let wales = lattice.wales;
+    pos.into_par_iter()
+        .zip(col)
+        .zip(tri)
+        .zip(ced)
+        .zip(edg)
+        .zip(pts)
+        .zip(nrm)
+        .zip(own)
+        .enumerate()
+        .for_each(
+            |(
+                i,
+                (((((((positions, colors), corner_verts), corner_edges), edge_verts), a), b), c),
+            )| {
+                let pc = pieces[i];
+                let owner_of = |k: usize| (pc.course, (pc.first_wale + c[k] as usize) % wales);
+                let mut bufs = PieceBuffers {
+                    vertex_base: vbase[i],
+                    edge_base: ebase[i],
+                    positions,
+                    colors,
+                    corner_verts,
+                    corner_edges,
+                    edge_verts,
+                };
+                build_bundle(a, b, &owner_of, &color_of, pc.closed, bundle, &mut bufs);
+            },
+        );
+
+    out.centerline = points.iter().flat_map(|q| q.to_array()).collect();
+    out.yarn_offsets = std::iter::once(0i64)
+        .chain(samples.iter().scan(0i64, |acc, &n| {
+            *acc += n as i64;
+            Some(*acc)
+        }))
+        .collect();
+    out.yarn_course = pieces.iter().map(|pc| pc.course as i32).collect();
+    out.yarn_closed = pieces.iter().map(|pc| pc.closed).collect();
+    out.stats.vertices = nv;
+    out.stats.triangles = nt;
+    out.stats.yarn_pieces = pieces.len();
+    Ok(out)
+}

@@ -1,0 +1,33 @@
+//! # knitwear
+//!
+//! Knitwear on free-form surfaces, after Zhong, Xu, Guo and Shum, *Realistic and Efficient
+//! Rendering of Free-form Knitwear* (MSR-TR-2000-33). Data flows one way; each module uses
+//! only the ones above it in this list:
+//!
+//! | stage | module | what it holds |
+//! |---|---|---|
+//! | surface | [`surface`] | positions and normals over a (u,v) domain (NURBS grid or UV mesh) |
+//! | pattern | [`pattern`] | stitch chart (knit/purl) and colour pattern |
+//! | lattice | [`lattice`] | tile corners in (u,v), one tile per stitch |
+//! | skeleton | [`skeleton`] | key points, normal offsets, cardinal-spline yarn centrelines |
+//! | geometry | [`geometry`] | fluffy triangle bundles swept along the centrelines |
+//! | measure | [`metrics`] | clearance between yarns |
+//! | pipeline | [`knit`] | the whole path, budget checks, NumPy-ready buffers |
+//!
+//! The Python bindings live in `src/python/`, behind the `python` cargo feature.
+
+pub mod budget;
+pub mod error;
+pub mod geometry;
+pub mod knit;
+pub mod lattice;
+pub mod metrics;
+pub mod parallel;
+pub mod pattern;
+pub mod skeleton;
+pub mod surface;
+
+#[cfg(feature = "python")]
+mod python;
+
+pub use error::{KnitError, Result};

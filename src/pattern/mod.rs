@@ -1,0 +1,146 @@
+//! Stitch and colour patterns: what each stitch of the fabric is and what colour its yarn is.
+//!
+//! A pattern is a small chart repeated over the whole fabric, as knitters repeat a stitch
+//! pattern across a row and up the piece. Coordinates: `course` counts rows from the bottom of
+//! the fabric (v), `wale` counts columns from the left (u), as seen from the right side (RS,
+//! the front, the side the surface normal points to).
+
+mod chart;
+mod color;
+mod presets;
+
+pub use chart::parse_chart;
+pub use color::ColorPattern;
+pub use presets::PRESETS;
+
+use crate::error::{KnitError, Result};
+
+/// A stitch as it shows on the right side (front) of the fabric.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Stitch {
+    /// A knit stitch: its loop was pulled through the loop below from back to front, so its
+    /// legs show as a V on the front and the head of the loop below lies behind them.
+    Knit,
+    /// A purl stitch: the reverse, pulled from front to back; its head shows as a bump.
+    Purl,
+}
+
+impl Stitch {
+    /// +1 for knit, -1 for purl: the side (along the surface normal) on which this stitch's
+    /// legs pass the head of the loop below.
+    pub fn side(self) -> f32 {
+        match self {
+            Stitch::Knit => 1.0,
+            Stitch::Purl => -1.0,
+        }
+    }
+
+    pub fn symbol(self) -> char {
+        match self {
+            Stitch::Knit => 'k',
+            Stitch::Purl => 'p',
+        }
+    }
+}
+
+/// A stitch pattern: a `width x height` chart repeated over the fabric in both directions.
+/// Invariant: `width >= 1`, `height >= 1`, `cells.len() == width * height`; row 0 is the
+/// bottom row of the chart.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct StitchPattern {
+    name: String,
+    width: usize,
+    height: usize,
+    cells: Vec<Stitch>,
+}
+
+impl StitchPattern {
+    /// Builds a pattern from rows given bottom row first. Every row must have the same width.
+    pub fn from_rows(name: &str, rows_bottom_up: Vec<Vec<Stitch>>) -> Result<Self> {
+        let height = rows_bottom_up.len();
+        let width = rows_bottom_up.first().map_or(0, Vec::len);
+        if height == 0 || width == 0 {
+            return Err(KnitError::Pattern("the chart has no stitches".into()));
+        }
+        if let Some((i, r)) = rows_bottom_up
+            .iter()
+            .enumerate()
+            .find(|(_, r)| r.len() != width)
+        {
+            return Err(KnitError::Pattern(format!(
+                "row {} has {} stitches but row 1 has {width}: every chart row must be equally wide",
+                i + 1,
+                r.len()
+            )));
+        }
+        Ok(Self {
+            name: name.to_string(),
+            width,
+            height,
+            cells: rows_bottom_up.into_iter().flatten().collect(),
+        })
+    }
+
+    /// Parses a text chart (see [`parse_chart`] for the symbols).
+    pub fn from_chart(text: &str) -> Result<Self> {
+        parse_chart(text)
+    }
+
+    /// A named preset (case, spaces and hyphens are ignored: "Rib 2x2" finds `rib_2x2`).
+    pub fn preset(name: &str) -> Result<Self> {
+        let key = normalise_name(name);
+        let found = PRESETS.iter().find(|(n, _)| normalise_name(n) == key);
+        match found {
+            Some((n, chart)) => {
+                let mut p = parse_chart(chart)?;
+                p.name = (*n).to_string();
+                Ok(p)
+            }
+            None => Err(KnitError::Pattern(format!(
+                "unknown preset {name:?}; presets are: {}",
+                Self::presets().join(", ")
+            ))),
+        }
+    }
+
+    /// The names of the presets, in display order.
+    pub fn presets() -> Vec<&'static str> {
+        PRESETS.iter().map(|(n, _)| *n).collect()
+    }
+
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+    pub fn width(&self) -> usize {
+        self.width
+    }
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// The stitch at (course, wale) of the fabric, the chart repeated in both directions.
+    pub fn stitch(&self, course: usize, wale: usize) -> Stitch {
+        self.cells[(course % self.height) * self.width + wale % self.width]
+    }
+
+    /// The chart as text, top row first, `k`/`p` symbols (parses back to an equal pattern).
+    pub fn chart(&self) -> String {
+        let mut s = String::with_capacity((self.width + 1) * self.height);
+        for r in (0..self.height).rev() {
+            s.extend(
+                self.cells[r * self.width..(r + 1) * self.width]
+                    .iter()
+                    .map(|c| c.symbol()),
+            );
+            s.push('\n');
+        }
+        s
+    }
+}
+
+fn normalise_name(name: &str) -> String {
+    name.chars()
+        .filter(|c| !matches!(c, ' ' | '-' | '_'))
+        .flat_map(char::to_lowercase)
+        .collect()
+}

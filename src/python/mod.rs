@@ -1,0 +1,594 @@
+//! The pyo3 binding layer, and the only pyo3 code: NumPy buffers in, core calls with the GIL
+//! released and panics caught, NumPy buffers out (moved, not copied), and one exhaustive
+//! mapping from [`KnitError`] to the Python exception hierarchy.
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::Arc;
+
+use numpy::ndarray::{Array1, Array2};
+use numpy::{IntoPyArray, PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::error::KnitError;
+use crate::knit::{knit as core_knit, ColorImage, KnitOutput, KnitParams};
+use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
+use crate::pattern::{ColorPattern, StitchPattern};
+use crate::surface::{GridSurface, MeshSurface, Surface};
+
+create_exception!(
+    knitwear,
+    PyKnitError,
+    PyException,
+    "Base class of every error a user can cause."
+);
+create_exception!(
+    knitwear,
+    SurfaceError,
+    PyKnitError,
+    "The surface cannot be knitted."
+);
+create_exception!(
+    knitwear,
+    PatternError,
+    PyKnitError,
+    "A pattern that does not parse."
+);
+create_exception!(
+    knitwear,
+    ParameterError,
+    PyKnitError,
+    "A setting out of range."
+);
+create_exception!(
+    knitwear,
+    BudgetError,
+    PyKnitError,
+    "The output would exceed the budget."
+);
+create_exception!(
+    knitwear,
+    InternalError,
+    PyKnitError,
+    "A bug in knitwear; please report it."
+);
+
+/// The one mapping from core errors to Python exceptions.
+fn to_py(e: KnitError) -> PyErr {
+    let msg = e.to_string();
+    match e {
+        KnitError::Surface(_) => SurfaceError::new_err(msg),
+        KnitError::Pattern(_) => PatternError::new_err(msg),
+        KnitError::Parameter(_) => ParameterError::new_err(msg),
+        KnitError::Budget(_) => BudgetError::new_err(msg),
+        KnitError::Internal(_) => InternalError::new_err(msg),
+    }
+}
+
+/// Runs core work without the GIL, turning a panic into a [`KnitError::Internal`].
+fn guarded<T: Send>(
+    py: Python<'_>,
+    f: impl FnOnce() -> Result<T, KnitError> + Send,
+) -> PyResult<T> {
+    py.detach(|| match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(r) => r,
+        Err(payload) => {
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".into());
+            Err(KnitError::Internal(what))
+        }
+    })
+    .map_err(to_py)
+}
+
+/// A float32 C-contiguous array of the expected trailing shape, copied out as a Vec (the
+/// inputs are small next to the output). Errors name the argument.
+fn f32_buffer(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    shape: &[Option<usize>],
+) -> PyResult<(Vec<usize>, Vec<f32>)> {
+    let arr = obj.cast::<PyArrayDyn<f32>>().map_err(|_| {
+        let dtype = obj
+            .getattr("dtype")
+            .map(|d| d.to_string())
+            .unwrap_or_else(|_| obj.get_type().to_string());
+        SurfaceError::new_err(format!(
+            "{name} must be a numpy float32 array, not {dtype} (use numpy.asarray(x, dtype=numpy.float32))"
+        ))
+    })?;
+    let dims = arr.shape().to_vec();
+    let ok = dims.len() == shape.len()
+        && dims
+            .iter()
+            .zip(shape)
+            .all(|(d, s)| s.is_none_or(|s| *d == s));
+    if !ok {
+        let want: Vec<String> = shape
+            .iter()
+            .map(|s| s.map_or("N".to_string(), |v| v.to_string()))
+            .collect();
+        return Err(SurfaceError::new_err(format!(
+            "{name} must have shape ({}), not {dims:?}",
+            want.join(", ")
+        )));
+    }
+    let ro = arr.readonly();
+    let data = ro.as_slice().map_err(|_| {
+        SurfaceError::new_err(format!(
+            "{name} must be C-contiguous (use numpy.ascontiguousarray)"
+        ))
+    })?;
+    Ok((dims, data.to_vec()))
+}
+
+/// Triangle indices: int32, uint32 or int64, C-contiguous, shape (M, 3), non-negative.
+fn index_buffer(obj: &Bound<'_, PyAny>) -> PyResult<Vec<u32>> {
+    let bad_shape = |dims: &[usize]| {
+        SurfaceError::new_err(format!("triangles must have shape (M, 3), not {dims:?}"))
+    };
+    let contiguous =
+        || SurfaceError::new_err("triangles must be C-contiguous (use numpy.ascontiguousarray)");
+    if let Ok(a) = obj.cast::<PyArrayDyn<u32>>() {
+        let ro = a.readonly();
+        if ro.shape().len() != 2 || ro.shape()[1] != 3 {
+            return Err(bad_shape(ro.shape()));
+        }
+        return Ok(ro.as_slice().map_err(|_| contiguous())?.to_vec());
+    }
+    let signed: Vec<i64> = if let Ok(a) = obj.cast::<PyArrayDyn<i32>>() {
+        let ro = a.readonly();
+        if ro.shape().len() != 2 || ro.shape()[1] != 3 {
+            return Err(bad_shape(ro.shape()));
+        }
+        ro.as_slice()
+            .map_err(|_| contiguous())?
+            .iter()
+            .map(|&i| i as i64)
+            .collect()
+    } else if let Ok(a) = obj.cast::<PyArrayDyn<i64>>() {
+        let ro = a.readonly();
+        if ro.shape().len() != 2 || ro.shape()[1] != 3 {
+            return Err(bad_shape(ro.shape()));
+        }
+        ro.as_slice().map_err(|_| contiguous())?.to_vec()
+    } else {
+        return Err(SurfaceError::new_err(
+            "triangles must be a numpy int32, uint32 or int64 array of shape (M, 3)",
+        ));
+    };
+    signed
+        .into_iter()
+        .map(|i| {
+            u32::try_from(i)
+                .map_err(|_| SurfaceError::new_err(format!("triangle index {i} is out of range")))
+        })
+        .collect()
+}
+
+/// Positions and normals sampled on a regular (u,v) grid (a NURBS surface).
+#[pyclass(name = "GridSurface", module = "knitwear", frozen)]
+pub struct PyGridSurface {
+    inner: Arc<GridSurface>,
+}
+
+#[pymethods]
+impl PyGridSurface {
+    #[new]
+    #[pyo3(signature = (positions, normals, cyclic_u=false, cyclic_v=false))]
+    fn new(
+        positions: &Bound<'_, PyAny>,
+        normals: &Bound<'_, PyAny>,
+        cyclic_u: bool,
+        cyclic_v: bool,
+    ) -> PyResult<Self> {
+        let (dims, p) = f32_buffer(positions, "positions", &[None, None, Some(3)])?;
+        let (ndims, n) = f32_buffer(normals, "normals", &[None, None, Some(3)])?;
+        if dims != ndims {
+            return Err(SurfaceError::new_err(format!(
+                "normals {ndims:?} must have the shape of positions {dims:?}"
+            )));
+        }
+        let py = positions.py();
+        let inner = guarded(py, move || {
+            GridSurface::new(dims[0], dims[1], &p, &n, cyclic_u, cyclic_v)
+        })?;
+        Ok(Self {
+            inner: Arc::new(inner),
+        })
+    }
+
+    /// Mean length along u (a course) and along v (a wale), scene units.
+    #[getter]
+    fn extent(&self) -> (f32, f32) {
+        self.inner.extent()
+    }
+}
+
+/// A triangle mesh with per-corner UVs.
+#[pyclass(name = "MeshSurface", module = "knitwear", frozen)]
+pub struct PyMeshSurface {
+    inner: Arc<MeshSurface>,
+}
+
+#[pymethods]
+impl PyMeshSurface {
+    #[new]
+    fn new(
+        positions: &Bound<'_, PyAny>,
+        normals: &Bound<'_, PyAny>,
+        triangles: &Bound<'_, PyAny>,
+        uvs: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let (pd, p) = f32_buffer(positions, "positions", &[None, Some(3)])?;
+        let (nd, n) = f32_buffer(normals, "normals", &[None, Some(3)])?;
+        if pd != nd {
+            return Err(SurfaceError::new_err(format!(
+                "normals {nd:?} must have the shape of positions {pd:?}"
+            )));
+        }
+        let t = index_buffer(triangles)?;
+        let (ud, uv) = f32_buffer(uvs, "uvs", &[None, Some(3), Some(2)])?;
+        if ud[0] * 3 != t.len() {
+            return Err(SurfaceError::new_err(format!(
+                "uvs has {} triangles but triangles has {}",
+                ud[0],
+                t.len() / 3
+            )));
+        }
+        let inner = guarded(positions.py(), move || MeshSurface::new(&p, &n, &t, &uv))?;
+        Ok(Self {
+            inner: Arc::new(inner),
+        })
+    }
+
+    #[getter]
+    fn extent(&self) -> (f32, f32) {
+        self.inner.extent()
+    }
+}
+
+/// A stitch pattern: a chart of knit and purl stitches repeated over the surface.
+#[pyclass(name = "Pattern", module = "knitwear", frozen)]
+pub struct PyPattern {
+    inner: StitchPattern,
+}
+
+#[pymethods]
+impl PyPattern {
+    /// A named preset; see `Pattern.presets()`.
+    #[staticmethod]
+    fn preset(name: &str) -> PyResult<Self> {
+        StitchPattern::preset(name)
+            .map(|inner| Self { inner })
+            .map_err(to_py)
+    }
+    /// A text chart: one line per row, top row first; k (knit) and p (purl) as seen on the front.
+    #[staticmethod]
+    fn from_chart(text: &str) -> PyResult<Self> {
+        StitchPattern::from_chart(text)
+            .map(|inner| Self { inner })
+            .map_err(to_py)
+    }
+    #[staticmethod]
+    fn presets() -> Vec<&'static str> {
+        StitchPattern::presets()
+    }
+    #[getter]
+    fn name(&self) -> &str {
+        self.inner.name()
+    }
+    #[getter]
+    fn width(&self) -> usize {
+        self.inner.width()
+    }
+    #[getter]
+    fn height(&self) -> usize {
+        self.inner.height()
+    }
+    fn chart(&self) -> String {
+        self.inner.chart()
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "Pattern({:?}, {}x{})",
+            self.inner.name(),
+            self.inner.width(),
+            self.inner.height()
+        )
+    }
+}
+
+fn palette_of(palette: Vec<Vec<f32>>) -> PyResult<Vec<[f32; 3]>> {
+    palette
+        .into_iter()
+        .enumerate()
+        .map(|(i, c)| match c.as_slice() {
+            [r, g, b] | [r, g, b, _] => Ok([*r, *g, *b]),
+            _ => Err(PatternError::new_err(format!(
+                "palette colour {i} must be (r, g, b)"
+            ))),
+        })
+        .collect()
+}
+
+/// A palette (linear RGB 0..1) and a chart of palette indices repeated over the surface.
+#[pyclass(name = "ColorPattern", module = "knitwear", frozen)]
+pub struct PyColorPattern {
+    inner: ColorPattern,
+}
+
+#[pymethods]
+impl PyColorPattern {
+    #[new]
+    #[pyo3(signature = (palette, chart="0"))]
+    fn new(palette: Vec<Vec<f32>>, chart: &str) -> PyResult<Self> {
+        ColorPattern::new(palette_of(palette)?, chart)
+            .map(|inner| Self { inner })
+            .map_err(to_py)
+    }
+    /// Horizontal stripes: each colour in turn for `rows_each` courses.
+    #[staticmethod]
+    #[pyo3(signature = (palette, rows_each=2))]
+    fn stripes(palette: Vec<Vec<f32>>, rows_each: usize) -> PyResult<Self> {
+        ColorPattern::stripes(palette_of(palette)?, rows_each)
+            .map(|inner| Self { inner })
+            .map_err(to_py)
+    }
+}
+
+/// The result of a knit: NumPy arrays ready for Blender's `foreach_set`.
+#[pyclass(name = "KnitResult", module = "knitwear", frozen)]
+pub struct PyKnitResult {
+    #[pyo3(get)]
+    vertices: Py<PyAny>,
+    #[pyo3(get)]
+    triangles: Py<PyAny>,
+    #[pyo3(get)]
+    edges: Py<PyAny>,
+    #[pyo3(get)]
+    corner_edges: Py<PyAny>,
+    #[pyo3(get)]
+    colors: Py<PyAny>,
+    #[pyo3(get)]
+    centerline_points: Py<PyAny>,
+    #[pyo3(get)]
+    course_offsets: Py<PyAny>,
+    #[pyo3(get)]
+    yarn_course: Py<PyAny>,
+    #[pyo3(get)]
+    yarn_closed: Py<PyAny>,
+    #[pyo3(get)]
+    yarn_radius: f32,
+    #[pyo3(get)]
+    stats: Py<PyDict>,
+}
+
+#[pymethods]
+impl PyKnitResult {
+    fn __repr__(&self, py: Python<'_>) -> String {
+        format!(
+            "KnitResult({})",
+            self.stats
+                .bind(py)
+                .repr()
+                .map(|r| r.to_string())
+                .unwrap_or_default()
+        )
+    }
+}
+
+fn rows<T: numpy::Element>(py: Python<'_>, v: Vec<T>, cols: usize) -> PyResult<Py<PyAny>> {
+    let n = v.len() / cols;
+    let a = Array2::from_shape_vec((n, cols), v)
+        .map_err(|e| InternalError::new_err(format!("output shape: {e}")))?;
+    Ok(a.into_pyarray(py).into_any().unbind())
+}
+
+fn flat<T: numpy::Element>(py: Python<'_>, v: Vec<T>) -> Py<PyAny> {
+    Array1::from_vec(v).into_pyarray(py).into_any().unbind()
+}
+
+fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResult> {
+    let s = &out.stats;
+    let stats = PyDict::new(py);
+    stats.set_item("courses", s.courses)?;
+    stats.set_item("wales", s.wales)?;
+    stats.set_item("stitches", s.stitches)?;
+    stats.set_item("stitches_skipped", s.stitches_skipped)?;
+    stats.set_item("vertices", s.vertices)?;
+    stats.set_item("triangles", s.triangles)?;
+    stats.set_item("yarn_pieces", s.yarn_pieces)?;
+    stats.set_item("stitch_width", s.stitch_width)?;
+    stats.set_item("stitch_height", s.stitch_height)?;
+    stats.set_item("flat_clearance", s.flat_clearance)?;
+    stats.set_item("clearance_min", s.clearance.map(|c| c.0))?;
+    stats.set_item("clearance_p01", s.clearance.map(|c| c.1))?;
+    stats.set_item("seconds", s.seconds)?;
+    let yarn_radius = out.yarn_radius;
+    Ok(PyKnitResult {
+        vertices: rows(py, out.positions, 3)?,
+        triangles: rows(py, out.triangles, 3)?,
+        edges: rows(py, out.edges, 2)?,
+        corner_edges: flat(py, out.corner_edges),
+        colors: rows(py, out.colors, 4)?,
+        centerline_points: rows(py, out.centerline, 3)?,
+        course_offsets: flat(py, out.yarn_offsets),
+        yarn_course: flat(py, out.yarn_course),
+        yarn_closed: flat(py, out.yarn_closed),
+        yarn_radius,
+        stats: stats.unbind(),
+    })
+}
+
+enum AnySurface {
+    Grid(Arc<GridSurface>),
+    Mesh(Arc<MeshSurface>),
+}
+
+/// Knits `pattern` over `surface`. See the README for every argument.
+#[pyfunction]
+#[pyo3(signature = (
+    surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
+    fluffiness=0.5, ring_segments=6, samples_per_loop=16, tension=0.0, seed=0, colors=None,
+    color_image=None, color_variation=0.15, threads=None, budget_bytes=None,
+    measure_clearance=false
+))]
+#[allow(clippy::too_many_arguments)]
+fn knit(
+    py: Python<'_>,
+    surface: &Bound<'_, PyAny>,
+    pattern: &Bound<'_, PyPattern>,
+    courses: Option<i64>,
+    wales: Option<i64>,
+    gauge: Option<(f32, f32)>,
+    yarn_radius: Option<f32>,
+    fluffiness: f32,
+    ring_segments: i64,
+    samples_per_loop: i64,
+    tension: f32,
+    seed: u64,
+    colors: Option<&Bound<'_, PyColorPattern>>,
+    color_image: Option<&Bound<'_, PyAny>>,
+    color_variation: f32,
+    threads: Option<i64>,
+    budget_bytes: Option<u64>,
+    measure_clearance: bool,
+) -> PyResult<PyKnitResult> {
+    let surf = if let Ok(g) = surface.cast::<PyGridSurface>() {
+        AnySurface::Grid(g.get().inner.clone())
+    } else if let Ok(m) = surface.cast::<PyMeshSurface>() {
+        AnySurface::Mesh(m.get().inner.clone())
+    } else {
+        return Err(SurfaceError::new_err(format!(
+            "surface must be a knitwear.GridSurface or knitwear.MeshSurface, not {}",
+            surface.get_type()
+        )));
+    };
+    let count = |name: &str, v: Option<i64>| -> PyResult<Option<usize>> {
+        match v {
+            None => Ok(None),
+            Some(n) if n >= 1 => Ok(Some(usize::try_from(n).unwrap_or(usize::MAX))),
+            Some(n) => Err(ParameterError::new_err(format!(
+                "{name} must be at least 1, not {n}"
+            ))),
+        }
+    };
+    let positive = |name: &str, v: i64| -> PyResult<usize> {
+        usize::try_from(v)
+            .map_err(|_| ParameterError::new_err(format!("{name} must not be negative, not {v}")))
+    };
+    let image = match color_image {
+        None => None,
+        Some(obj) => {
+            let arr = obj.cast::<PyArrayDyn<f32>>().map_err(|_| {
+                ParameterError::new_err(
+                    "color_image must be a float32 array (height, width, 3 or 4)",
+                )
+            })?;
+            let ro = arr.readonly();
+            let dims = ro.shape().to_vec();
+            if dims.len() != 3 {
+                return Err(ParameterError::new_err(format!(
+                    "color_image must have shape (height, width, 3 or 4), not {dims:?}"
+                )));
+            }
+            let data = ro
+                .as_slice()
+                .map_err(|_| ParameterError::new_err("color_image must be C-contiguous"))?
+                .to_vec();
+            Some(ColorImage::new(dims[1], dims[0], dims[2], data).map_err(to_py)?)
+        }
+    };
+    let params = KnitParams {
+        courses: count("courses", courses)?,
+        wales: count("wales", wales)?,
+        gauge,
+        yarn_radius,
+        fluffiness,
+        ring_segments: positive("ring_segments", ring_segments)?,
+        samples_per_loop: positive("samples_per_loop", samples_per_loop)?,
+        tension,
+        seed,
+        colors: colors.map(|c| c.get().inner.clone()),
+        color_image: image,
+        color_variation,
+        threads: match threads {
+            None => None,
+            Some(t) => Some(positive("threads", t)?),
+        },
+        budget_bytes: budget_bytes.unwrap_or(crate::budget::DEFAULT_BUDGET_BYTES),
+        measure_clearance,
+    };
+    let pattern = pattern.get().inner.clone();
+    let out = guarded(py, move || match &surf {
+        AnySurface::Grid(g) => core_knit(g.as_ref(), &pattern, &params),
+        AnySurface::Mesh(m) => core_knit(m.as_ref(), &pattern, &params),
+    })?;
+    to_result(py, out)
+}
+
+/// Clearance of a knit result: `(min, p01)` in yarn diameters (DESIGN.md section 7).
+#[pyfunction]
+fn measure_clearance(py: Python<'_>, result: &Bound<'_, PyKnitResult>) -> PyResult<(f32, f32)> {
+    let r = result.get();
+    let (_, pts) = f32_buffer(
+        r.centerline_points.bind(py),
+        "centerline_points",
+        &[None, Some(3)],
+    )?;
+    let offsets: Vec<i64> = r.course_offsets.bind(py).extract()?;
+    let closed: Vec<bool> = r.yarn_closed.bind(py).extract()?;
+    let diameter = 2.0 * r.yarn_radius;
+    guarded(py, move || {
+        let v: Vec<glam::Vec3> = pts
+            .chunks_exact(3)
+            .map(|c| glam::Vec3::new(c[0], c[1], c[2]))
+            .collect();
+        let yarns: Vec<YarnPolyline> = offsets
+            .windows(2)
+            .zip(&closed)
+            .map(|(w, &c)| YarnPolyline {
+                points: &v[w[0] as usize..w[1] as usize],
+                closed: c,
+            })
+            .collect();
+        let c = clearance(&yarns, diameter, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS, 3.0);
+        Ok((c.min, c.p01))
+    })
+}
+
+/// Raises InternalError from a deliberate panic in the core: proves that no Rust panic
+/// crosses into Python. For tests.
+#[pyfunction]
+fn _force_internal_error(py: Python<'_>) -> PyResult<()> {
+    guarded(py, || -> Result<(), KnitError> {
+        panic!("forced internal error (test hook)")
+    })
+}
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("KnitError", py.get_type::<PyKnitError>())?;
+    m.add("SurfaceError", py.get_type::<SurfaceError>())?;
+    m.add("PatternError", py.get_type::<PatternError>())?;
+    m.add("ParameterError", py.get_type::<ParameterError>())?;
+    m.add("BudgetError", py.get_type::<BudgetError>())?;
+    m.add("InternalError", py.get_type::<InternalError>())?;
+    m.add_class::<PyGridSurface>()?;
+    m.add_class::<PyMeshSurface>()?;
+    m.add_class::<PyPattern>()?;
+    m.add_class::<PyColorPattern>()?;
+    m.add_class::<PyKnitResult>()?;
+    m.add_function(wrap_pyfunction!(knit, m)?)?;
+    m.add_function(wrap_pyfunction!(measure_clearance, m)?)?;
+    m.add_function(wrap_pyfunction!(_force_internal_error, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,215 @@
+//! The knitwear skeleton (seed 000, section 2.3): one continuous yarn centreline per course,
+//! through the six key points of every loop, offset along the surface normal and joined by a
+//! cubic cardinal spline.
+//!
+//! The spline is built in (u, v, lambda) space (lambda: normal offset in scene units) and each
+//! sample is mapped to 3D as `s(u,v) + lambda n(u,v)`. This binds every sample to the surface
+//! by (u,v), so the yarn follows the surface between key points too (on a sphere it does not
+//! cut chords), and a deforming surface moves the yarn without rebuilding the skeleton. On a
+//! flat surface it is the paper's 3D spline exactly (cardinal splines are affine-invariant).
+
+mod key_points;
+mod offsets;
+mod spline;
+pub mod tuning;
+
+pub use key_points::{key_points, KEY_POINTS};
+pub use offsets::NormalOffsets;
+pub use spline::CardinalSpline;
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use crate::lattice::{Lattice, Tile};
+use crate::pattern::{Stitch, StitchPattern};
+use crate::surface::Surface;
+
+/// A continuous run of built stitches of one course: one piece of yarn. A course is one
+/// piece unless stitches are missing (outside every UV island); a complete course round a
+/// cyclic-u surface is one closed piece.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct YarnPiece {
+    pub course: usize,
+    /// Wale of the first stitch. With cyclic u a piece may run past the last wale and wrap;
+    /// stitch `j` of the piece is at wale `(first_wale + j) % wales`.
+    pub first_wale: usize,
+    pub stitches: usize,
+    pub closed: bool,
+}
+
+/// Spline sampling settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SplineSampling {
+    /// Centreline samples per loop (per stitch), at least 6. Default: 16.
+    pub samples_per_loop: usize,
+    /// Cardinal spline tension in [0, 1): 0 is Catmull-Rom. Default: 0.
+    pub tension: f32,
+}
+
+impl YarnPiece {
+    /// Number of centreline samples of this piece, closed form. Open pieces sample the
+    /// parameter range `[0, 6n - 1]` (the last key point included); closed ones `[0, 6n)`.
+    pub fn sample_count(&self, samples_per_loop: usize) -> usize {
+        let s = samples_per_loop;
+        if self.closed {
+            self.stitches * s
+        } else {
+            // Parameters j * 6 / s for j = 0.. while below 6n - 1, then 6n - 1 itself.
+            let t_max_scaled = (KEY_POINTS * self.stitches - 1) * s; // t_max * s
+            t_max_scaled.div_ceil(KEY_POINTS) + 1
+        }
+    }
+
+    /// Parameter of sample `j` on the spline through this piece's key points.
+    fn sample_t(&self, j: usize, samples_per_loop: usize) -> f32 {
+        let t = (j * KEY_POINTS) as f32 / samples_per_loop as f32;
+        if self.closed {
+            t
+        } else {
+            t.min((KEY_POINTS * self.stitches - 1) as f32)
+        }
+    }
+}
+
+/// Which stitches have a surface under all their key points (row-major, course by wale).
+pub fn built_stitches(surface: &dyn Surface, lattice: &Lattice) -> Vec<bool> {
+    let (courses, wales) = (lattice.courses, lattice.wales);
+    let mut built = vec![false; courses * wales];
+    built
+        .par_chunks_mut(wales)
+        .enumerate()
+        .for_each(|(r, row)| {
+            for (w, b) in row.iter_mut().enumerate() {
+                let kp = key_points(&lattice.tile(r, w));
+                *b = kp.iter().all(|uv| surface.eval(*uv).is_some());
+            }
+        });
+    built
+}
+
+/// Splits every course into pieces of consecutive built stitches.
+pub fn yarn_pieces(lattice: &Lattice, built: &[bool]) -> Vec<YarnPiece> {
+    let wales = lattice.wales;
+    let mut pieces = Vec::new();
+    for course in 0..lattice.courses {
+        let row = &built[course * wales..(course + 1) * wales];
+        if lattice.cyclic_u && row.iter().all(|&b| b) {
+            pieces.push(YarnPiece {
+                course,
+                first_wale: 0,
+                stitches: wales,
+                closed: true,
+            });
+            continue;
+        }
+        // Start scanning after a missing stitch, so a run across a cyclic seam stays whole.
+        let start = if lattice.cyclic_u {
+            row.iter().position(|&b| !b).unwrap_or(0) + 1
+        } else {
+            0
+        };
+        let mut run_start: Option<usize> = None;
+        for k in 0..=wales {
+            let w = start + k;
+            let is_built = k < wales && row[w % wales];
+            match (is_built, run_start) {
+                (true, None) => run_start = Some(w),
+                (false, Some(s)) => {
+                    pieces.push(YarnPiece {
+                        course,
+                        first_wale: s,
+                        stitches: w - s,
+                        closed: false,
+                    });
+                    run_start = None;
+                }
+                _ => {}
+            }
+        }
+    }
+    pieces
+}
+
+/// The tile of stitch (course, wale) where `wale` may exceed the lattice's last wale on a
+/// cyclic-u surface: the tile is then moved by one period so the piece stays continuous.
+fn tile_unwrapped(lattice: &Lattice, course: usize, wale: usize) -> Tile {
+    let wales = lattice.wales;
+    let t = lattice.tile(course, wale % wales);
+    let shift = Vec2::new((wale / wales) as f32 * lattice.tile.x * wales as f32, 0.0);
+    Tile {
+        n0: t.n0 + shift,
+        n1: t.n1 + shift,
+        n2: t.n2 + shift,
+        n3: t.n3 + shift,
+        n4: t.n4 + shift,
+    }
+}
+
+/// Key points of a piece in (u, v, lambda), in yarn order.
+pub fn piece_key_points(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    offsets: &NormalOffsets,
+    piece: &YarnPiece,
+) -> Vec<Vec3> {
+    let wales = lattice.wales;
+    let mut out = Vec::with_capacity(piece.stitches * KEY_POINTS);
+    for j in 0..piece.stitches {
+        let w = piece.first_wale + j;
+        let wale = w % wales;
+        let this = pattern.stitch(piece.course, wale);
+        let above = pattern.stitch(piece.course + 1, wale);
+        let left: Stitch = if wale > 0 {
+            pattern.stitch(piece.course, wale - 1)
+        } else if lattice.cyclic_u {
+            pattern.stitch(piece.course, wales - 1)
+        } else {
+            this
+        };
+        let lambdas = offsets.lambdas(this, above, left);
+        let kp = key_points(&tile_unwrapped(lattice, piece.course, w));
+        out.extend(
+            kp.iter()
+                .zip(lambdas)
+                .map(|(uv, l)| Vec3::new(uv.x, uv.y, l)),
+        );
+    }
+    out
+}
+
+/// Fills one piece's centreline: 3D points, the surface normal under each, and each sample's
+/// stitch index within the piece. The three slices have `piece.sample_count()` elements.
+#[allow(clippy::too_many_arguments)]
+pub fn sample_piece(
+    surface: &dyn Surface,
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    offsets: &NormalOffsets,
+    sampling: &SplineSampling,
+    piece: &YarnPiece,
+    points: &mut [Vec3],
+    normals: &mut [Vec3],
+    stitch_of_sample: &mut [u32],
+) {
+    let kp = piece_key_points(lattice, pattern, offsets, piece);
+    let spline = CardinalSpline {
+        points: &kp,
+        closed: piece.closed,
+        tension: sampling.tension,
+    };
+    for (j, ((p, n), owner)) in points
+        .iter_mut()
+        .zip(normals.iter_mut())
+        .zip(stitch_of_sample.iter_mut())
+        .enumerate()
+    {
+        let t = piece.sample_t(j, sampling.samples_per_loop);
+        let q = spline.eval(t);
+        let sp = surface
+            .eval(Vec2::new(q.x, q.y))
+            .unwrap_or_else(|| surface.eval_nearest(Vec2::new(q.x, q.y)));
+        *p = sp.position + q.z * sp.normal;
+        *n = sp.normal;
+        *owner = ((t / KEY_POINTS as f32) as usize).min(piece.stitches - 1) as u32;
+    }
+}

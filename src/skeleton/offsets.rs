@@ -1,0 +1,62 @@
+//! Normal offsets (the lambdas of seed 000, section 2.3): how far each key point stands off
+//! the surface, along the surface normal, in scene units.
+//!
+//! The paper leaves the signs and magnitudes open ("chosen so that the loop is knitted into the
+//! skeleton according to the stitch pattern and there is no intersection"). Our model gives
+//! each key point a sign from the stitch whose crossing it takes part in, and one magnitude per
+//! kind of key point, tuned for clearance by [`super::tuning`]:
+//!
+//! - leg bottoms k1, k5 pass the head of the loop below on the side of their own stitch
+//!   (front for knit, back for purl): `+a * side(self)`;
+//! - the head k3 passes the legs of the loop above on the other side: `-c * side(above)`;
+//! - leg tops k2, k4 pass the sinker of the row above on the side of the stitch above:
+//!   `+b * side(above)`;
+//! - the sinker k0 passes the leg tops of the row below on the other side of its own stitch,
+//!   and halfway between where the stitch to its left differs (a knit/purl boundary, where the
+//!   yarn goes from front to back): `-e * (side(self) + side(left)) / 2`.
+//!
+//! With every magnitude at most one yarn diameter the fabric is at most three diameters thick.
+
+use crate::pattern::Stitch;
+
+/// Signed normal-offset coefficients of the six key points, in scene units, each in
+/// `[-diameter, diameter]`. `lambda_i = x[i] * sign_i`, where `sign_i` is the crossing side of
+/// key point `i` given by the model above (so for knit-only fabric `x` is the lambdas
+/// themselves, and a purl stitch mirrors them).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NormalOffsets {
+    /// k0..k5, then the sinker's extra offset where the stitch to its left is of the other
+    /// kind (a knit/purl boundary, where the yarn changes sides).
+    pub x: [f32; COEFFICIENTS],
+}
+
+/// Number of tuned coefficients.
+pub const COEFFICIENTS: usize = 7;
+
+impl NormalOffsets {
+    /// The model's naive choice: every key point `x` off the surface on its crossing side.
+    pub fn uniform(x: f32) -> Self {
+        Self {
+            x: [x; COEFFICIENTS],
+        }
+    }
+
+    pub fn scaled(self, k: f32) -> Self {
+        Self {
+            x: self.x.map(|v| v * k),
+        }
+    }
+
+    /// The signed offsets lambda_0..lambda_5 of a loop, given its stitch, the stitch above it
+    /// (same wale, next course) and the stitch to its left (same course, previous wale).
+    pub fn lambdas(&self, this: Stitch, above: Stitch, left: Stitch) -> [f32; 6] {
+        let s = this.side();
+        let up = above.side();
+        let sinker_side = -0.5 * (s + left.side());
+        let boundary_side = 0.5 * (s - left.side());
+        let sign = [sinker_side, s, up, -up, up, s];
+        let mut l: [f32; 6] = std::array::from_fn(|i| self.x[i] * sign[i]);
+        l[0] += self.x[6] * boundary_side;
+        l
+    }
+}

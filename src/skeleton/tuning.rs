@@ -1,0 +1,197 @@
+//! Choosing the normal offsets by optimising clearance (DESIGN.md section 3: "choose lambdas by
+//! optimising the clearance metric, per stitch type and yarn thickness, not by hand").
+//!
+//! The four magnitudes of [`NormalOffsets`] are tuned on a flat patch knitted with the user's
+//! pattern, stitch size and yarn diameter, maximising the minimum clearance (then the 1st
+//! percentile) by a deterministic compass search inside `[0, diameter]^4`. The inputs are
+//! quantised first and the result cached per process, so the result is a pure function of
+//! the quantised inputs: the same on every machine, whatever the cache held before.
+
+use std::collections::HashMap;
+use std::sync::{Mutex, OnceLock};
+
+use glam::Vec3;
+
+use super::offsets::COEFFICIENTS;
+use super::{sample_piece, yarn_pieces, NormalOffsets, SplineSampling};
+use crate::lattice::Lattice;
+use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
+use crate::pattern::StitchPattern;
+use crate::surface::{PlaneSurface, Surface};
+
+/// Samples per loop used while tuning (finer than the default output, so the tuned offsets
+/// hold for any output sampling).
+const TUNING_SAMPLES: usize = 24;
+/// Minimum patch size in stitches in each direction.
+const MIN_PATCH: usize = 6;
+/// Clearances beyond this many diameters do not matter to the search.
+const CAP: f32 = 3.0;
+
+/// Quantisation steps of the cache key (in units of the yarn diameter / tension).
+const Q_RATIO: f32 = 1.0 / 64.0;
+const Q_TENSION: f32 = 1.0 / 100.0;
+
+#[derive(Clone, PartialEq, Eq, Hash)]
+struct Key {
+    pattern: StitchPattern,
+    width: i64,
+    height: i64,
+    tension: i64,
+}
+
+/// The result of tuning: offsets in diameters, and the clearance they reach on a flat patch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tuned {
+    /// Offset magnitudes as fractions of the yarn diameter.
+    pub offsets: NormalOffsets,
+    /// Minimum clearance on the flat patch, in diameters.
+    pub clearance_min: f32,
+}
+
+fn cache() -> &'static Mutex<HashMap<Key, Tuned>> {
+    static CACHE: OnceLock<Mutex<HashMap<Key, Tuned>>> = OnceLock::new();
+    CACHE.get_or_init(|| Mutex::new(HashMap::new()))
+}
+
+/// Tunes the normal offsets for `pattern` knitted with stitches `stitch_width x stitch_height`
+/// (scene units, measured on the surface) and yarn of `diameter`. Returns offsets in scene
+/// units and the flat-patch clearance in diameters.
+pub fn tuned_offsets(
+    pattern: &StitchPattern,
+    stitch_width: f32,
+    stitch_height: f32,
+    diameter: f32,
+    tension: f32,
+) -> (NormalOffsets, f32) {
+    let key = Key {
+        pattern: pattern.clone(),
+        width: (stitch_width / diameter / Q_RATIO).round() as i64,
+        height: (stitch_height / diameter / Q_RATIO).round() as i64,
+        tension: (tension / Q_TENSION).round() as i64,
+    };
+    let cached = cache().lock().ok().and_then(|c| c.get(&key).copied());
+    let tuned = match cached {
+        Some(t) => t,
+        None => {
+            let t = tune(
+                pattern,
+                key.width as f32 * Q_RATIO,
+                key.height as f32 * Q_RATIO,
+                key.tension as f32 * Q_TENSION,
+            );
+            if let Ok(mut c) = cache().lock() {
+                c.insert(key, t);
+            }
+            t
+        }
+    };
+    (tuned.offsets.scaled(diameter), tuned.clearance_min)
+}
+
+/// Clearance (min, p01) in diameters of `pattern` on a flat patch with unit yarn diameter.
+pub fn patch_clearance(
+    pattern: &StitchPattern,
+    width: f32,
+    height: f32,
+    tension: f32,
+    offsets: &NormalOffsets,
+) -> (f32, f32) {
+    let wales = pattern.width() * MIN_PATCH.div_ceil(pattern.width());
+    let courses = pattern.height() * MIN_PATCH.div_ceil(pattern.height());
+    let plane = PlaneSurface {
+        width: wales as f32 * width,
+        height: (courses as f32 + 2.0 * crate::lattice::ROW_OVERHANG) * height,
+    };
+    let lattice = Lattice::regular(plane.domain(), courses, wales, false, false);
+    let built = vec![true; courses * wales];
+    let pieces = yarn_pieces(&lattice, &built);
+    let sampling = SplineSampling {
+        samples_per_loop: TUNING_SAMPLES,
+        tension,
+    };
+    let lines: Vec<Vec<Vec3>> = pieces
+        .iter()
+        .map(|piece| {
+            let n = piece.sample_count(TUNING_SAMPLES);
+            let mut pts = vec![Vec3::ZERO; n];
+            let mut nrm = vec![Vec3::ZERO; n];
+            let mut own = vec![0u32; n];
+            sample_piece(
+                &plane, &lattice, pattern, offsets, &sampling, piece, &mut pts, &mut nrm, &mut own,
+            );
+            pts
+        })
+        .collect();
+    let yarns: Vec<YarnPolyline> = lines
+        .iter()
+        .map(|p| YarnPolyline {
+            points: p,
+            closed: false,
+        })
+        .collect();
+    let c = clearance(&yarns, 1.0, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS, CAP);
+    (c.min, c.p01)
+}
+
+/// Deterministic compass search over the six signed coefficients in `[-1, 1]` diameters,
+/// started from each of a few fixed points; the best result wins.
+fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned {
+    let score = |x: &[f32; COEFFICIENTS]| {
+        let (min, p01) = patch_clearance(pattern, width, height, tension, &NormalOffsets { x: *x });
+        (min + 0.1 * p01, min)
+    };
+    let mut best_overall: Option<(f32, f32, [f32; COEFFICIENTS])> = None;
+    for start in START_POINTS {
+        let mut x = *start;
+        let (mut best, mut best_min) = score(&x);
+        let mut step = 0.25f32;
+        while step >= 1.0 / 32.0 {
+            let mut improved = false;
+            for i in 0..COEFFICIENTS {
+                for dir in [1.0f32, -1.0] {
+                    let mut y = x;
+                    y[i] = (y[i] + dir * step).clamp(LOWER[i], 1.0);
+                    if y[i] == x[i] {
+                        continue;
+                    }
+                    let (s, m) = score(&y);
+                    if s > best + 1e-6 {
+                        x = y;
+                        best = s;
+                        best_min = m;
+                        improved = true;
+                    }
+                }
+            }
+            if !improved {
+                step *= 0.5;
+            }
+        }
+        if best_overall.is_none_or(|(b, _, _)| best > b) {
+            best_overall = Some((best, best_min, x));
+        }
+    }
+    let (_, clearance_min, x) = best_overall.unwrap_or((0.0, 0.0, [0.5; COEFFICIENTS]));
+    Tuned {
+        offsets: NormalOffsets { x },
+        clearance_min,
+    }
+}
+
+/// Lower bounds of the coefficients. The leg bottoms (k1, k5) must pass the head below on
+/// their stitch's side and the head (k3) the legs above on the other side: that crossing is
+/// the interlock a knit or purl stitch is, so the search may not flip it. The sinker and the
+/// leg tops are free: on a flat sheet the best clearance has the leg tops leaving towards the
+/// head behind the row above, as in real stockinette where each V's arms tuck under the V
+/// above.
+const LOWER: [f32; COEFFICIENTS] = [-1.0, 0.0, -1.0, 0.0, -1.0, 0.0, -1.0];
+
+/// Starting points of the search (coefficients in diameters, key points k0..k5): the
+/// stockinette optimum found by an exhaustive grid search (1.25 diameters of clearance at a
+/// diameter of 0.2 stitch widths and rows of 0.71 stitch widths), and a gentler one.
+const START_POINTS: &[[f32; COEFFICIENTS]] = &[
+    [-1.0, 1.0, -1.0, 1.0, -1.0, 1.0, 0.0],
+    [-0.5, 0.5, -0.5, 0.5, -0.5, 0.5, 0.0],
+    [-1.0, 1.0, -1.0, 1.0, -1.0, 1.0, 0.75],
+    [-1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -0.75],
+];
