@@ -13,7 +13,7 @@ mod offsets;
 mod spline;
 pub mod tuning;
 
-pub use key_points::{key_points, KEY_POINTS};
+pub use key_points::{boundary_sinker, key_points, KEY_POINTS};
 pub use offsets::NormalOffsets;
 pub use spline::CardinalSpline;
 
@@ -166,8 +166,14 @@ pub fn piece_key_points(
         } else {
             this
         };
+        // The pattern repeats downwards too, so the first course has a stitch "below".
+        let below = pattern.stitch(piece.course + pattern.height() - 1, wale);
         let lambdas = offsets.lambdas(this, above, left);
-        let kp = key_points(&tile_unwrapped(lattice, piece.course, w));
+        let tile = tile_unwrapped(lattice, piece.course, w);
+        let mut kp = key_points(&tile);
+        if left != this && below == this {
+            kp[0] = boundary_sinker(&tile);
+        }
         out.extend(
             kp.iter()
                 .zip(lambdas)
