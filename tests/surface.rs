@@ -802,13 +802,3 @@ fn mesh_nearest_among_scattered_islands_is_exact() {
 }
 
 // ---------------------------------------------------------------- benchmarks
-
-/// `n` uniform points of [0, 1]^2, and the same sorted by (v, u): the order a lattice walks
-/// the surface in, course after course.
-fn random_and_coherent(n: usize, seed: u64) -> (Vec<Vec2>, Vec<Vec2>) {
-    let mut rng = Lcg(seed);
-    let random: Vec<Vec2> = (0..n).map(|_| rng.uv()).collect();
-    let mut coherent = random.clone();
-    coherent.sort_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)));
-    (random, coherent)
-}
