@@ -198,10 +198,13 @@ pub fn sample_piece(
     stitch_of_sample: &mut [u32],
 ) {
     let kp = piece_key_points(lattice, pattern, offsets, piece);
+    // A closed course comes back to its start one domain width further on in u.
+    let period = Vec3::new(lattice.tile.x * lattice.wales as f32, 0.0, 0.0);
     let spline = CardinalSpline {
         points: &kp,
         closed: piece.closed,
         tension: sampling.tension,
+        period,
     };
     for (j, ((p, n), owner)) in points
         .iter_mut()

@@ -7,12 +7,16 @@
 
 use glam::Vec3;
 
-/// A cardinal spline through `points`; `closed` wraps the last point to the first.
+/// A cardinal spline through `points`; `closed` wraps the last point to the first, shifted
+/// by `period` for each wrap (a course round a cyclic-u surface comes back to its start one
+/// domain width further on in u).
 #[derive(Debug, Clone, Copy)]
 pub struct CardinalSpline<'a> {
     pub points: &'a [Vec3],
     pub closed: bool,
     pub tension: f32,
+    /// Added to a point each time the index wraps past the end (closed splines only).
+    pub period: Vec3,
 }
 
 impl CardinalSpline<'_> {
@@ -30,7 +34,7 @@ impl CardinalSpline<'_> {
     fn point(&self, i: isize) -> Vec3 {
         let n = self.points.len() as isize;
         if self.closed {
-            self.points[i.rem_euclid(n) as usize]
+            self.points[i.rem_euclid(n) as usize] + i.div_euclid(n) as f32 * self.period
         } else if i < 0 {
             // Reflect the first segment so the end tangent follows the yarn.
             2.0 * self.points[0] - self.points[1.min(n - 1) as usize]
