@@ -98,6 +98,7 @@ mod tests {
                     points: &pts,
                     closed,
                     tension,
+                    period: Vec3::ZERO,
                 };
                 for (i, p) in pts.iter().enumerate() {
                     assert!(
@@ -111,8 +112,19 @@ mod tests {
             points: &pts,
             closed: true,
             tension: 0.0,
+            period: Vec3::ZERO,
         };
         assert!((s.eval(7.0) - pts[0]).length() < 1e-5);
+        // With a period, a closed spline ends at its start one period further on.
+        let period = Vec3::new(10.0, 0.0, 0.0);
+        let s = CardinalSpline {
+            points: &pts,
+            closed: true,
+            tension: 0.0,
+            period,
+        };
+        assert!((s.eval(7.0) - (pts[0] + period)).length() < 1e-5);
+        assert!((s.eval(6.5).x - 6.5).abs() < 1.0);
     }
 
     #[test]
@@ -122,6 +134,7 @@ mod tests {
             points: &pts,
             closed: false,
             tension: 1.0,
+            period: Vec3::ZERO,
         };
         assert!((s.eval(0.5) - Vec3::new(0.5, 0.0, 0.0)).length() < 1e-6);
         assert!((s.eval(1.5) - Vec3::new(1.0, 0.5, 0.0)).length() < 1e-6);
