@@ -119,11 +119,19 @@ fn f32_buffer(
         )));
     }
     let ro = arr.readonly();
-    let data = ro.as_slice().map_err(|_| {
-        SurfaceError::new_err(format!(
-            "{name} must be C-contiguous (use numpy.ascontiguousarray)"
-        ))
-    })?;
+    // as_slice also accepts Fortran order, which would silently scramble the samples.
+    let c_order = if ro.is_c_contiguous() {
+        Ok(())
+    } else {
+        Err(())
+    };
+    let data = c_order
+        .and_then(|_| ro.as_slice().map_err(|_| ()))
+        .map_err(|_| {
+            SurfaceError::new_err(format!(
+                "{name} must be C-contiguous (use numpy.ascontiguousarray)"
+            ))
+        })?;
     Ok((dims, data.to_vec()))
 }
 
@@ -139,12 +147,18 @@ fn index_buffer(obj: &Bound<'_, PyAny>) -> PyResult<Vec<u32>> {
         if ro.shape().len() != 2 || ro.shape()[1] != 3 {
             return Err(bad_shape(ro.shape()));
         }
+        if !ro.is_c_contiguous() {
+            return Err(contiguous());
+        }
         return Ok(ro.as_slice().map_err(|_| contiguous())?.to_vec());
     }
     let signed: Vec<i64> = if let Ok(a) = obj.cast::<PyArrayDyn<i32>>() {
         let ro = a.readonly();
         if ro.shape().len() != 2 || ro.shape()[1] != 3 {
             return Err(bad_shape(ro.shape()));
+        }
+        if !ro.is_c_contiguous() {
+            return Err(contiguous());
         }
         ro.as_slice()
             .map_err(|_| contiguous())?
@@ -155,6 +169,9 @@ fn index_buffer(obj: &Bound<'_, PyAny>) -> PyResult<Vec<u32>> {
         let ro = a.readonly();
         if ro.shape().len() != 2 || ro.shape()[1] != 3 {
             return Err(bad_shape(ro.shape()));
+        }
+        if !ro.is_c_contiguous() {
+            return Err(contiguous());
         }
         ro.as_slice().map_err(|_| contiguous())?.to_vec()
     } else {
@@ -498,10 +515,11 @@ fn knit(
                     "color_image must have shape (height, width, 3 or 4), not {dims:?}"
                 )));
             }
-            let data = ro
-                .as_slice()
-                .map_err(|_| ParameterError::new_err("color_image must be C-contiguous"))?
-                .to_vec();
+            let not_c = || ParameterError::new_err("color_image must be C-contiguous");
+            if !ro.is_c_contiguous() {
+                return Err(not_c());
+            }
+            let data = ro.as_slice().map_err(|_| not_c())?.to_vec();
             Some(ColorImage::new(dims[1], dims[0], dims[2], data).map_err(to_py)?)
         }
     };
