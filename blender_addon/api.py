@@ -1,0 +1,362 @@
+"""Scripting API: knit an object without the UI.
+
+Everything the Knit operator and the Update operator do goes through here, so a script gets
+exactly what a click gets::
+
+    import bpy
+    from bl_ext.user_default.knitwear import api
+
+    knit = api.knit_object(bpy.data.objects["Sweater"], pattern="rib_2x2",
+                           color_mode="STRIPES", color_count=2, stripe_height=4)
+    api.update_knit(knit, gauge_stitches=24)
+
+Settings are the keyword arguments of `knit_object` (see `properties.KnitSettingsMixin`
+for names, units and defaults). Every failure a user can cause raises a `knitwear.KnitError`
+subclass with a message fit for a report, and leaves the blend file as it was.
+"""
+
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import bpy
+import knitwear
+import numpy as np
+
+from . import material, mesh_build, sampling
+from .properties import (
+    CUSTOM_PATTERN,
+    FLOAT_SETTINGS,
+    MAX_COLORS,
+    SETTING_NAMES,
+    setting_defaults,
+)
+
+#: Called with the fraction done (0..1) between the steps of a knit.
+Progress = Callable[[float], None]
+
+#: The core reads a gauge as stitches per this many scene units (10 cm in metres).
+_GAUGE_LENGTH = 0.1
+
+
+@dataclass(frozen=True)
+class KnitOutcome:
+    """What one knit produced, for reports and benchmarks."""
+
+    object: bpy.types.Object
+    stitches: int
+    triangles: int
+    skipped_stitches: int
+    #: Seconds from start to finished mesh, and inside the core alone.
+    seconds: float
+    core_seconds: float
+    #: Seconds spent building the Blender mesh from the core's arrays.
+    mesh_seconds: float
+
+
+def settings_from(obj: bpy.types.Object) -> dict[str, Any]:
+    """The knit settings stored on ``obj`` (a knit object), as `knit_object` keywords."""
+    stored = obj.knitwear
+    out: dict[str, Any] = {}
+    for name in SETTING_NAMES:
+        value = getattr(stored, name)
+        out[name] = tuple(value) if hasattr(value, "__len__") and not isinstance(
+            value, str
+        ) else value
+    return out
+
+
+def _complete(settings: Mapping[str, Any]) -> dict[str, Any]:
+    unknown = sorted(set(settings) - set(SETTING_NAMES))
+    if unknown:
+        raise TypeError(
+            f"unknown knit setting(s) {', '.join(unknown)}; known: {', '.join(SETTING_NAMES)}"
+        )
+    merged = setting_defaults() | dict(settings)
+    # Blender stores float settings in single precision. Rounding the API's values the same
+    # way makes knit_object(..., x=0.15) and a later update_knit() (which reads the stored
+    # 0.15f) bit-identical, as they are for the operator.
+    for name in FLOAT_SETTINGS:
+        value = merged[name]
+        if isinstance(value, int | float):
+            merged[name] = float(np.float32(value))
+        else:  # a colour: tuple, list or Blender's property array
+            merged[name] = tuple(float(np.float32(x)) for x in value)
+    return merged
+
+
+def _chart_text(text: str) -> str:
+    # A one-line UI field cannot hold line breaks, so ';' separates rows too.
+    rows = [row.strip() for row in text.replace(";", "\n").splitlines()]
+    return "\n".join(row for row in rows if row)
+
+
+def _pattern(settings: Mapping[str, Any]) -> "knitwear.Pattern":
+    if settings["pattern"] == CUSTOM_PATTERN:
+        return knitwear.Pattern.from_chart(_chart_text(settings["pattern_chart"]))
+    return knitwear.Pattern.preset(settings["pattern"])
+
+
+def _palette(settings: Mapping[str, Any]) -> list[tuple[float, float, float]]:
+    return [tuple(settings[f"color_{i + 1}"]) for i in range(MAX_COLORS)]
+
+
+def _colors(settings: Mapping[str, Any]) -> dict[str, Any]:
+    """The core's `colors` / `color_image` arguments."""
+    mode = settings["color_mode"]
+    palette = _palette(settings)
+    if mode == "SINGLE":
+        return {"colors": knitwear.ColorPattern(palette[:1], "0")}
+    if mode == "STRIPES":
+        count = int(settings["color_count"])
+        if not 1 <= count <= MAX_COLORS:
+            raise knitwear.ParameterError(f"color_count must be 1 to {MAX_COLORS}, not {count}")
+        return {
+            "colors": knitwear.ColorPattern.stripes(
+                palette[:count], rows_each=int(settings["stripe_height"])
+            )
+        }
+    if mode == "CHART":
+        return {"colors": knitwear.ColorPattern(palette, _chart_text(settings["color_chart"]))}
+    if mode == "IMAGE":
+        name = settings["color_image_name"]
+        image = bpy.data.images.get(name) if name else None
+        if image is None:
+            raise knitwear.ParameterError(
+                f"colour image '{name}' not found: pick an image for the Image colour mode"
+                if name
+                else "no colour image chosen: pick an image for the Image colour mode"
+            )
+        return {"color_image": sampling.image_pixels(image)}
+    raise knitwear.ParameterError(
+        f"unknown color_mode {mode!r}; expected SINGLE, STRIPES, CHART or IMAGE"
+    )
+
+
+def _gauge(per_10cm: float, scene: bpy.types.Scene) -> float:
+    """A gauge per 10 cm as the core reads it: per 0.1 scene units, as if a unit were a metre.
+
+    One scene unit is ``scale_length`` metres, so 0.1 units hold ``scale_length`` times the
+    stitches that 10 cm hold.
+    """
+    return per_10cm * scene.unit_settings.scale_length
+
+
+def _size(settings: Mapping[str, Any], scene: bpy.types.Scene) -> dict[str, Any]:
+    """The core's size arguments: explicit counts, or a gauge per 0.1 scene units."""
+    mode = settings["size_mode"]
+    if mode == "COUNTS":
+        return {"courses": int(settings["courses"]), "wales": int(settings["wales"])}
+    if mode == "GAUGE":
+        stitches, rows = float(settings["gauge_stitches"]), float(settings["gauge_rows"])
+        if not (stitches > 0 and rows > 0):
+            raise knitwear.ParameterError(
+                f"gauge must be positive, not {stitches:g} stitches x {rows:g} rows per 10 cm"
+            )
+        return {"gauge": (_gauge(stitches, scene), _gauge(rows, scene))}
+    raise knitwear.ParameterError(f"unknown size_mode {mode!r}; expected GAUGE or COUNTS")
+
+
+def _sample(
+    source: bpy.types.Object,
+    context: bpy.types.Context,
+    settings: Mapping[str, Any],
+    size: Mapping[str, Any],
+) -> sampling.Sampled:
+    """Sample the source densely enough for the stitch count it will get."""
+    direction = settings["direction"]
+    if "gauge" in size:
+        # The stitch count follows from the surface's size: measure it on Blender's own
+        # tessellation first (cheap), then sample densely.
+        probe = sampling.sample_object(source, context, direction=direction)
+        if probe.grid_shape is None:
+            return probe  # a mesh is used as it is
+        extent_u, extent_v = probe.surface.extent
+        wales = extent_u * size["gauge"][0] / _GAUGE_LENGTH
+        courses = extent_v * size["gauge"][1] / _GAUGE_LENGTH
+    else:
+        if source.type == "MESH":
+            return sampling.sample_object(source, context, direction=direction)
+        wales, courses = size["wales"], size["courses"]
+    per = sampling.SAMPLES_PER_STITCH
+    # Capped so an absurd count reaches the core's budget check instead of a huge grid.
+    min_samples = (
+        int(min(wales, 1e7) * per) + 1,
+        int(min(courses, 1e7) * per) + 1,
+    )
+    return sampling.sample_object(
+        source, context, direction=direction, min_samples=min_samples
+    )
+
+
+def _run_core(
+    source: bpy.types.Object,
+    context: bpy.types.Context,
+    settings: Mapping[str, Any],
+    progress: Progress | None,
+) -> tuple[sampling.Sampled, Any, float]:
+    """Everything that can fail, before any datablock is created."""
+    scene = context.scene
+    pattern = _pattern(settings)
+    colors = _colors(settings)
+    size = _size(settings, scene)
+    if progress:
+        progress(0.05)
+    sampled = _sample(source, context, settings, size)
+    if progress:
+        progress(0.2)
+    radius = float(settings["yarn_radius"])
+    t0 = time.perf_counter()
+    result = knitwear.knit(
+        sampled.surface,
+        pattern,
+        **size,
+        yarn_radius=radius if radius > 0 else None,
+        fluffiness=float(settings["fluffiness"]),
+        ring_segments=int(settings["ring_segments"]),
+        samples_per_loop=int(settings["samples_per_loop"]),
+        tension=float(settings["tension"]),
+        seed=int(settings["seed"]),
+        color_variation=float(settings["color_variation"]),
+        threads=scene.render.threads,
+        **colors,
+    )
+    core_seconds = time.perf_counter() - t0
+    if progress:
+        progress(0.8)
+    return sampled, result, core_seconds
+
+
+def _store(obj: bpy.types.Object, source: bpy.types.Object, settings: Mapping[str, Any]) -> None:
+    stored = obj.knitwear
+    for name, value in settings.items():
+        setattr(stored, name, value)
+    stored.source = source
+    stored.is_knit = True
+
+
+def _outcome(
+    obj: bpy.types.Object, result: Any, t_start: float, core_s: float, mesh_s: float
+) -> KnitOutcome:
+    stats = result.stats
+    skipped = int(stats.get("stitches_skipped", 0))
+    stitches = int(stats.get("stitches", 0))
+    return KnitOutcome(
+        object=obj,
+        stitches=stitches,
+        triangles=len(result.triangles),
+        skipped_stitches=skipped,
+        seconds=time.perf_counter() - t_start,
+        core_seconds=core_s,
+        mesh_seconds=mesh_s,
+    )
+
+
+def _check_source(source: bpy.types.Object | None, what: str) -> bpy.types.Object:
+    if source is None:
+        raise knitwear.SurfaceError(f"{what} has no source surface (was it deleted?)")
+    if source.type not in {"SURFACE", "MESH"}:
+        raise knitwear.SurfaceError(
+            f"'{source.name}' is a {source.type.lower()}: knitwear knits NURBS surfaces and "
+            "meshes with a UV map"
+        )
+    if source.knitwear.is_knit:
+        raise knitwear.SurfaceError(f"'{source.name}' is itself a knit: knit its source instead")
+    return source
+
+
+def knit(
+    source: bpy.types.Object,
+    *,
+    context: bpy.types.Context | None = None,
+    progress: Progress | None = None,
+    **settings: Any,
+) -> KnitOutcome:
+    """Knit ``source`` into a new object; return it with timings and counts.
+
+    The new object, "<source>.knit", goes into the source's first collection with the source's
+    location and rotation (its scale is baked into the mesh: see `sampling`), carries the
+    "Knitwear Yarn" material and remembers ``source`` and the settings for `update_knit`.
+    """
+    t_start = time.perf_counter()
+    context = context or bpy.context
+    settings = _complete(settings)
+    source = _check_source(source, "the object")
+    sampled, result, core_s = _run_core(source, context, settings, progress)
+
+    t_mesh = time.perf_counter()
+    name = f"{source.name}.knit"
+    mesh = mesh_build.new_mesh(name, result)
+    mesh_s = time.perf_counter() - t_mesh
+    material.assign(mesh)
+    obj = bpy.data.objects.new(name, mesh)
+    obj.matrix_world = sampled.matrix
+    collection = source.users_collection[0] if source.users_collection else None
+    (collection or context.scene.collection).objects.link(obj)
+    _store(obj, source, settings)
+    if progress:
+        progress(1.0)
+    return _outcome(obj, result, t_start, core_s, mesh_s)
+
+
+def knit_object(
+    source: bpy.types.Object, *, context: bpy.types.Context | None = None, **settings: Any
+) -> bpy.types.Object:
+    """Knit ``source`` (a NURBS surface, or a mesh with a UV map) and return the knit object.
+
+    ``settings`` are the knit settings by name (unnamed ones take their defaults), e.g.
+    ``pattern="seed", gauge_stitches=22, color_mode="STRIPES"``. Raises `knitwear.KnitError`
+    (for instance `knitwear.SurfaceError` for a mesh without UV map, `knitwear.BudgetError` for
+    a stitch count that would not fit in memory); nothing is created then.
+    """
+    return knit(source, context=context, **settings).object
+
+
+def knit_result(
+    source: bpy.types.Object, *, context: bpy.types.Context | None = None, **settings: Any
+) -> Any:
+    """The core's `knitwear.KnitResult` for ``source`` and ``settings``, building nothing in
+    Blender: for scripts that want the raw arrays (yarn centrelines per course, colours...).
+    The arrays are in the space of the knit object `knit_object` would create."""
+    context = context or bpy.context
+    source = _check_source(source, "the object")
+    return _run_core(source, context, _complete(settings), None)[1]
+
+
+def update(
+    obj: bpy.types.Object,
+    *,
+    context: bpy.types.Context | None = None,
+    progress: Progress | None = None,
+    **settings: Any,
+) -> KnitOutcome:
+    """Rebuild knit object ``obj`` in place from its source; ``settings`` override the stored
+    ones (and are stored). The mesh datablock is kept, so its material and other users stay;
+    the object follows its source's current location and rotation."""
+    t_start = time.perf_counter()
+    context = context or bpy.context
+    if not obj.knitwear.is_knit:
+        raise knitwear.ParameterError(f"'{obj.name}' is not a knit: knit a surface first")
+    merged = _complete(settings_from(obj) | dict(settings))
+    source = _check_source(obj.knitwear.source, f"'{obj.name}'")
+    sampled, result, core_s = _run_core(source, context, merged, progress)
+
+    t_mesh = time.perf_counter()
+    mesh_build.fill_mesh(obj.data, result)
+    mesh_s = time.perf_counter() - t_mesh
+    material.assign(obj.data)
+    obj.matrix_world = sampled.matrix
+    _store(obj, source, merged)
+    if progress:
+        progress(1.0)
+    return _outcome(obj, result, t_start, core_s, mesh_s)
+
+
+def update_knit(
+    obj: bpy.types.Object, *, context: bpy.types.Context | None = None, **settings: Any
+) -> bpy.types.Object:
+    """Rebuild ``obj`` from its stored source and settings (``settings`` override and are
+    stored). Raises `knitwear.KnitError` and leaves ``obj`` unchanged on failure."""
+    return update(obj, context=context, **settings).object
+

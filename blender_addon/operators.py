@@ -1,0 +1,133 @@
+"""Operators: Knit (a new knit object from the active surface) and Update (rebuild a knit).
+
+Thin by design: `execute` gathers the settings and calls one function of `api`, which does
+all the work and raises `knitwear.KnitError` for anything a user can get wrong. Nothing is
+created before the core has succeeded, so a cancelled operator leaves the scene as it was.
+"""
+
+import bpy
+import knitwear
+
+from . import api
+from .properties import SETTING_NAMES, KnitSettingsMixin
+from .settings_ui import draw_settings
+
+
+class _Progress:
+    """The window manager's progress indicator, where there is a window to show it in."""
+
+    def __init__(self, context: bpy.types.Context) -> None:
+        # Headless there is a window manager but nothing to draw the progress on.
+        self._wm = None if bpy.app.background else context.window_manager
+        if self._wm is not None:
+            self._wm.progress_begin(0, 100)
+
+    def update(self, fraction: float) -> None:
+        if self._wm is not None:
+            self._wm.progress_update(int(100 * fraction))
+
+    def end(self) -> None:
+        if self._wm is not None:
+            self._wm.progress_end()
+
+
+def _summary(outcome: api.KnitOutcome) -> str:
+    text = (
+        f"Knitted {outcome.stitches:,} stitches, {outcome.triangles:,} triangles "
+        f"in {outcome.seconds:.2f} s"
+    )
+    if outcome.skipped_stitches:
+        text += f" ({outcome.skipped_stitches:,} stitches outside the UV map skipped)"
+    return text
+
+
+def _make_active(context: bpy.types.Context, obj: bpy.types.Object) -> None:
+    for other in context.selected_objects:
+        other.select_set(False)
+    try:
+        obj.select_set(True)
+    except RuntimeError:
+        return  # the source's collection is excluded from this view layer
+    context.view_layer.objects.active = obj
+
+
+class OBJECT_OT_knitwear_knit(KnitSettingsMixin, bpy.types.Operator):
+    """Cover the active NURBS surface or UV-mapped mesh with knitted yarn, as a new object"""
+
+    bl_idname = "object.knitwear_knit"
+    bl_label = "Knit this surface"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context: bpy.types.Context) -> bool:
+        obj = context.active_object
+        if obj is None or obj.type not in {"SURFACE", "MESH"}:
+            cls.poll_message_set("Select a NURBS surface or a mesh with a UV map")
+            return False
+        if context.mode != "OBJECT":
+            # In Edit Mode the object's data lags behind the edit (mesh) or is being edited
+            # (surface): knit what the user sees once they leave it.
+            cls.poll_message_set("Switch to Object Mode to knit")
+            return False
+        if obj.knitwear.is_knit:
+            cls.poll_message_set("The active object is already a knit: use Update Knit")
+            return False
+        return True
+
+    def execute(self, context: bpy.types.Context) -> set[str]:
+        settings = {name: getattr(self, name) for name in SETTING_NAMES}
+        progress = _Progress(context)
+        try:
+            outcome = api.knit(
+                context.active_object, context=context, progress=progress.update, **settings
+            )
+        except knitwear.KnitError as err:
+            self.report({"ERROR"}, str(err))
+            return {"CANCELLED"}
+        finally:
+            progress.end()
+        _make_active(context, outcome.object)
+        self.report({"INFO"}, _summary(outcome))
+        return {"FINISHED"}
+
+    def draw(self, _context: bpy.types.Context) -> None:
+        draw_settings(self.layout, self, "knitwear_redo")
+
+
+class OBJECT_OT_knitwear_update(bpy.types.Operator):
+    """Rebuild the active knit from its source surface with its current settings"""
+
+    bl_idname = "object.knitwear_update"
+    bl_label = "Update Knit"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context: bpy.types.Context) -> bool:
+        obj = context.active_object
+        if obj is None or not obj.knitwear.is_knit:
+            cls.poll_message_set("The active object is not a knit")
+            return False
+        if context.mode != "OBJECT":
+            cls.poll_message_set("Switch to Object Mode to update the knit")
+            return False
+        return True
+
+    def execute(self, context: bpy.types.Context) -> set[str]:
+        progress = _Progress(context)
+        try:
+            outcome = api.update(context.active_object, context=context, progress=progress.update)
+        except knitwear.KnitError as err:
+            self.report({"ERROR"}, str(err))
+            return {"CANCELLED"}
+        finally:
+            progress.end()
+        self.report({"INFO"}, _summary(outcome))
+        return {"FINISHED"}
+
+
+def draw_object_menu(self: bpy.types.Menu, _context: bpy.types.Context) -> None:
+    """Entries in Object menu of the 3D viewport (which also makes them searchable)."""
+    layout = self.layout
+    layout.separator()
+    layout.operator(OBJECT_OT_knitwear_knit.bl_idname, icon="MOD_CLOTH")
+    layout.operator(OBJECT_OT_knitwear_update.bl_idname, icon="FILE_REFRESH")

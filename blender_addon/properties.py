@@ -1,0 +1,316 @@
+"""Knit settings: one definition shared by the stored settings and the operator.
+
+`KnitSettingsMixin` declares every setting once. `KnitwearSettings` (``obj.knitwear``) stores
+them on the knit object so Update can rebuild it, and the Knit operator inherits the same
+annotations so its redo panel edits exactly the same values. Lengths are stored in Blender
+units; the UI shows them in the scene's unit system. Gauge is a knitter's gauge in stitches
+and rows per 10 cm, converted to scene units with the scene's unit scale (1 unit = 1 m x
+``unit_settings.scale_length``).
+"""
+
+import bpy
+import knitwear
+from bpy.props import (
+    BoolProperty,
+    EnumProperty,
+    FloatProperty,
+    FloatVectorProperty,
+    IntProperty,
+    PointerProperty,
+    StringProperty,
+)
+
+#: How many yarn colours the palette offers (``color_1`` .. ``color_4``).
+MAX_COLORS = 4
+
+CUSTOM_PATTERN = "CUSTOM"
+
+# Display names and tooltips for the core's presets. A preset the core adds later still shows
+# up (title-cased) because the list itself comes from `knitwear.Pattern.presets()`.
+_PRESET_LABELS: dict[str, tuple[str, str]] = {
+    "stockinette": ("Stockinette", "Knit on the right side: smooth V columns"),
+    "reverse_stockinette": ("Reverse Stockinette", "Purl on the right side: horizontal bumps"),
+    "garter": ("Garter", "Alternate knit and purl rows: ridged and reversible"),
+    "rib_1x1": ("1x1 Rib", "Knit 1, purl 1 columns"),
+    "rib_2x2": ("2x2 Rib", "Knit 2, purl 2 columns"),
+    "seed": ("Seed", "Knit 1, purl 1, offset every row: pebbly texture"),
+    "moss": ("Moss", "Knit 1, purl 1, offset every second row"),
+    "basketweave": ("Basketweave", "Alternating blocks of knit and purl"),
+}
+
+
+def _pattern_items() -> list[tuple[str, str, str]]:
+    items = []
+    for name in knitwear.Pattern.presets():
+        label, tip = _PRESET_LABELS.get(name, (name.replace("_", " ").title(), ""))
+        items.append((name, label, tip))
+    items.append((CUSTOM_PATTERN, "Custom Chart", "The stitch chart typed in Chart"))
+    return items
+
+
+# Built once at import: an EnumProperty keeps a reference to a static list, whereas a callback
+# would have to keep its result alive itself (Blender does not copy the strings).
+PATTERN_ITEMS = _pattern_items()
+DEFAULT_PATTERN = "stockinette" if any(i[0] == "stockinette" for i in PATTERN_ITEMS) else (
+    PATTERN_ITEMS[0][0]
+)
+
+SIZE_MODE_ITEMS = [
+    ("GAUGE", "Gauge", "Stitch size from a knitter's gauge: stitches and rows per 10 cm"),
+    ("COUNTS", "Counts", "A fixed number of courses (rows) and wales (columns) over the surface"),
+]
+
+DIRECTION_ITEMS = [
+    ("AUTO", "Auto", "Courses go round a surface that is closed in one direction, as when "
+     "knitting in the round; otherwise along U"),
+    ("U", "Along U", "Courses (the yarn's rows) run along the surface's U direction"),
+    ("V", "Along V", "Courses (the yarn's rows) run along the surface's V direction"),
+]
+
+COLOR_MODE_ITEMS = [
+    ("SINGLE", "Single", "One yarn colour"),
+    ("STRIPES", "Stripes", "Horizontal stripes cycling through the yarn colours"),
+    ("CHART", "Chart", "A colour chart of yarn colour numbers (colourwork)"),
+    ("IMAGE", "Image", "Each stitch takes the colour of an image at its (u,v)"),
+]
+
+_DEFAULT_COLORS = (
+    (0.50, 0.05, 0.05),  # cranberry
+    (0.80, 0.75, 0.65),  # oatmeal
+    (0.03, 0.10, 0.30),  # navy
+    (0.25, 0.40, 0.10),  # moss green
+)
+
+
+def _color_prop(index: int) -> FloatVectorProperty:
+    return FloatVectorProperty(
+        name=f"Colour {index + 1}",
+        description=f"Yarn colour {index + 1} (linear RGB); colour number {index} in charts",
+        subtype="COLOR",
+        size=3,
+        min=0.0,
+        max=1.0,
+        default=_DEFAULT_COLORS[index],
+    )
+
+
+class KnitSettingsMixin:
+    """Every knit setting, declared once (see the module docstring)."""
+
+    # -- Pattern
+    pattern: EnumProperty(
+        name="Pattern",
+        description="Stitch pattern of knit and purl stitches, repeated over the surface",
+        items=PATTERN_ITEMS,
+        default=DEFAULT_PATTERN,
+    )
+    pattern_chart: StringProperty(
+        name="Chart",
+        description="Custom stitch chart, used when Pattern is Custom Chart. One line per row "
+        "(top line = top row); rows may also be separated with ';'. "
+        "k = knit, p = purl (also | v for knit, - . o for purl)",
+        default="kkpp;kkpp;pppp;kkkk",
+    )
+    # -- Size
+    size_mode: EnumProperty(
+        name="Size",
+        description="How the stitch size is given",
+        items=SIZE_MODE_ITEMS,
+        default="GAUGE",
+    )
+    gauge_stitches: FloatProperty(
+        name="Stitches / 10 cm",
+        description="Gauge: stitches per 10 cm measured along a course (scene units are "
+        "metres times the scene's unit scale)",
+        default=20.0,
+        min=0.01,
+        soft_min=2.0,
+        soft_max=60.0,
+        precision=1,
+    )
+    gauge_rows: FloatProperty(
+        name="Rows / 10 cm",
+        description="Gauge: rows (courses) per 10 cm measured along a wale",
+        default=28.0,
+        min=0.01,
+        soft_min=2.0,
+        soft_max=80.0,
+        precision=1,
+    )
+    # The hard maxima are deliberately far beyond what fits in memory: the core's budget check
+    # gives a precise error (with the size it would need) instead of a silent clamp.
+    courses: IntProperty(
+        name="Courses",
+        description="Number of courses (rows of stitches) over the whole surface",
+        default=30,
+        min=1,
+        max=100_000_000,
+        soft_max=2000,
+    )
+    wales: IntProperty(
+        name="Wales",
+        description="Number of wales (columns of stitches) over the whole surface",
+        default=30,
+        min=1,
+        max=100_000_000,
+        soft_max=2000,
+    )
+    direction: EnumProperty(
+        name="Course Direction",
+        description="Which surface direction the courses (rows of stitches) run along",
+        items=DIRECTION_ITEMS,
+        default="AUTO",
+    )
+    # -- Yarn
+    yarn_radius: FloatProperty(
+        name="Yarn Radius",
+        description="Radius of the yarn in scene units; 0 = automatic, a tenth of the stitch "
+        "width (the thickness the core's loop shapes are tuned for)",
+        default=0.0,
+        min=0.0,
+        soft_max=0.01,
+        subtype="DISTANCE",
+        unit="LENGTH",
+        precision=4,
+    )
+    fluffiness: FloatProperty(
+        name="Fluffiness",
+        description="How far stray fibres stand out of the yarn, as a fraction of its radius "
+        "(0 = smooth tube)",
+        default=0.5,
+        min=0.0,
+        soft_max=1.0,
+        max=4.0,
+        subtype="FACTOR",
+    )
+    ring_segments: IntProperty(
+        name="Ring Segments",
+        description="Vertices around the yarn's cross-section (more = rounder, heavier)",
+        default=6,
+        min=3,
+        soft_max=16,
+        max=64,
+    )
+    samples_per_loop: IntProperty(
+        name="Samples per Loop",
+        description="Rings along the yarn per stitch loop (more = smoother curves, heavier)",
+        default=16,
+        min=6,
+        soft_max=48,
+        max=256,
+    )
+    tension: FloatProperty(
+        name="Spline Tension",
+        description="Tension of the cardinal spline through each loop's key points "
+        "(0 = Catmull-Rom, round loops; towards 1 = straighter segments)",
+        default=0.0,
+        min=0.0,
+        max=0.99,
+        subtype="FACTOR",
+    )
+    seed: IntProperty(
+        name="Seed",
+        description="Random seed of the stitch irregularity and fibres; the same seed gives "
+        "the same knit on every machine",
+        default=0,
+        min=0,
+    )
+    # -- Colour
+    color_mode: EnumProperty(
+        name="Colour",
+        description="How yarn colours are laid out",
+        items=COLOR_MODE_ITEMS,
+        default="SINGLE",
+    )
+    color_count: IntProperty(
+        name="Colours",
+        description="How many of the yarn colours stripes use",
+        default=2,
+        min=1,
+        max=MAX_COLORS,
+    )
+    color_1: _color_prop(0)
+    color_2: _color_prop(1)
+    color_3: _color_prop(2)
+    color_4: _color_prop(3)
+    color_chart: StringProperty(
+        name="Colour Chart",
+        description="Colourwork chart of colour numbers (0 = Colour 1 .. 3 = Colour 4), one "
+        "line per row (top line = top row); rows may also be separated with ';'",
+        default="0001;0010;0100;1000",
+    )
+    stripe_height: IntProperty(
+        name="Stripe Height",
+        description="Rows (courses) per stripe",
+        default=2,
+        min=1,
+        soft_max=50,
+        max=100_000,
+    )
+    color_image_name: StringProperty(
+        name="Image",
+        description="Image whose colours the stitches take (looked up at each stitch's "
+        "(u,v) in the surface's parameter space or UV map)",
+        default="",
+    )
+    color_variation: FloatProperty(
+        name="Variation",
+        description="Random per-fibre brightness variation that gives yarn its fibrous look "
+        "(fraction of the colour)",
+        default=0.15,
+        min=0.0,
+        max=1.0,
+        subtype="FACTOR",
+    )
+
+
+def _poll_source(_self: bpy.types.PropertyGroup, obj: bpy.types.Object) -> bool:
+    return obj.type in {"SURFACE", "MESH"} and not obj.knitwear.is_knit
+
+
+class KnitwearSettings(KnitSettingsMixin, bpy.types.PropertyGroup):
+    """``obj.knitwear``: whether an object is a knit, what it was knitted from, and how."""
+
+    is_knit: BoolProperty(
+        name="Is Knit",
+        description="This object's mesh was made by Knitwear and can be updated",
+        default=False,
+    )
+    source: PointerProperty(
+        name="Source",
+        description="The NURBS surface or UV-mapped mesh this knit follows",
+        type=bpy.types.Object,
+        poll=_poll_source,
+    )
+
+
+#: The settings' names, in declaration order (the scripting API's keyword arguments).
+SETTING_NAMES: tuple[str, ...] = tuple(KnitSettingsMixin.__annotations__)
+
+#: The settings Blender stores as single-precision floats.
+FLOAT_SETTINGS: tuple[str, ...] = tuple(
+    name
+    for name, prop in KnitSettingsMixin.__annotations__.items()
+    if prop.function in (FloatProperty, FloatVectorProperty)
+)
+
+
+def setting_defaults() -> dict[str, object]:
+    """Each setting's default value, as the scripting API applies it."""
+    defaults: dict[str, object] = {}
+    for name, prop in KnitSettingsMixin.__annotations__.items():
+        value = prop.keywords.get("default")
+        if value is None:
+            value = "" if prop.function is StringProperty else 0
+        defaults[name] = tuple(value) if isinstance(value, tuple | list) else value
+    return defaults
+
+
+def register() -> None:
+    bpy.utils.register_class(KnitwearSettings)
+    bpy.types.Object.knitwear = PointerProperty(type=KnitwearSettings)
+
+
+def unregister() -> None:
+    del bpy.types.Object.knitwear
+    bpy.utils.unregister_class(KnitwearSettings)
