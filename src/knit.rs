@@ -11,6 +11,7 @@ use crate::error::{KnitError, Result};
 use crate::geometry::{build_bundle, bundle_counts, BundleSettings, PieceBuffers};
 use crate::lattice::{Lattice, ROW_OVERHANG};
 use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
+use crate::output_buffer;
 use crate::parallel::{run_in_pool, split_lengths};
 use crate::pattern::{ColorPattern, StitchPattern};
 use crate::skeleton::{
@@ -164,6 +165,12 @@ pub struct KnitStats {
     pub clearance: Option<(f32, f32)>,
     /// Seconds spent in the core.
     pub seconds: f64,
+    /// A key of the mesh topology (triangles, edges, their order): equal keys mean identical
+    /// `triangles`, `edges` and `corner_edges` buffers, so a consumer holding a mesh with this
+    /// key need only rewrite positions and colours. It depends on the yarn pieces' lengths,
+    /// whether they are closed, and the ring segments; never on positions or random choices
+    /// (each triangle owns its apex vertex, so the random apex picks move vertices only).
+    pub topology_key: u64,
 }
 
 /// A knit, in flat buffers.
@@ -370,6 +377,18 @@ pub fn measure(out: &KnitOutput) -> (f32, f32) {
     (c.min, c.p01)
 }
 
+/// See [`KnitStats::topology_key`]: a SplitMix64 chain over the structure that fixes the
+/// buffers' layout.
+fn topology_key(ring_segments: usize, pieces: &[YarnPiece], samples: &[usize]) -> u64 {
+    let mix = |h: u64, x: u64| crate::geometry::stitch_seed(h, x as usize, 0x4b4e_4954);
+    let mut h = mix(0x6b6e_6974_7765_6172, ring_segments as u64);
+    h = mix(h, pieces.len() as u64);
+    for (pc, &n) in pieces.iter().zip(samples) {
+        h = mix(h, ((n as u64) << 1) | pc.closed as u64);
+    }
+    h
+}
+
 fn vec3_slice(v: &[f32]) -> &[Vec3] {
     // Vec3 is three packed f32 (glam's non-SIMD Vec3), so a flat f32 buffer of 3N values is
     // N Vec3s.
@@ -430,11 +449,11 @@ fn build(
     let nt = total.triangles as usize;
     let ne = total.edges as usize;
     let mut out = KnitOutput {
-        positions: vec![0.0; 3 * nv],
-        colors: vec![0.0; 4 * nv],
-        triangles: vec![0; 3 * nt],
-        corner_edges: vec![0; 3 * nt],
-        edges: vec![0; 2 * ne],
+        positions: output_buffer::zeroed(3 * nv),
+        colors: output_buffer::zeroed(4 * nv),
+        triangles: output_buffer::zeroed(3 * nt),
+        corner_edges: output_buffer::zeroed(3 * nt),
+        edges: output_buffer::zeroed(2 * ne),
         ..Default::default()
     };
 
@@ -523,6 +542,7 @@ fn build(
     out.yarn_closed = pieces.iter().map(|pc| pc.closed).collect();
     out.stats.vertices = nv;
     out.stats.triangles = nt;
+    out.stats.topology_key = topology_key(m, pieces, &samples);
     out.stats.yarn_pieces = pieces.len();
     Ok(out)
 }

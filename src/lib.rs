@@ -22,6 +22,7 @@ pub mod geometry;
 pub mod knit;
 pub mod lattice;
 pub mod metrics;
+pub mod output_buffer;
 pub mod parallel;
 pub mod pattern;
 pub mod skeleton;

@@ -3,5 +3,7 @@
 mod bundle;
 mod frames;
 
-pub use bundle::{build_bundle, bundle_counts, BundleCounts, BundleSettings, PieceBuffers};
+pub use bundle::{
+    build_bundle, bundle_counts, stitch_seed, BundleCounts, BundleSettings, PieceBuffers,
+};
 pub use frames::ring_frame;

@@ -427,6 +427,7 @@ fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResult> {
     stats.set_item("clearance_min", s.clearance.map(|c| c.0))?;
     stats.set_item("clearance_p01", s.clearance.map(|c| c.1))?;
     stats.set_item("seconds", s.seconds)?;
+    stats.set_item("topology_key", s.topology_key)?;
     let yarn_radius = out.yarn_radius;
     Ok(PyKnitResult {
         vertices: rows(py, out.positions, 3)?,
