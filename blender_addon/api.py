@@ -332,8 +332,10 @@ def update(
     **settings: Any,
 ) -> KnitOutcome:
     """Rebuild knit object ``obj`` in place from its source; ``settings`` override the stored
-    ones (and are stored). The mesh datablock is kept, so its material and other users stay;
-    the object follows its source's current location and rotation."""
+    ones (and are stored). Where only positions or colours change (a new seed, colours,
+    fluffiness, a moved source) the mesh datablock is rewritten in place; otherwise a new one
+    takes its place for every user, with its name and materials. The object follows its
+    source's current location and rotation."""
     t_start = time.perf_counter()
     context = context or bpy.context
     if not obj.knitwear.is_knit:
@@ -343,9 +345,9 @@ def update(
     sampled, result, core_s = _run_core(source, context, merged, progress)
 
     t_mesh = time.perf_counter()
-    mesh_build.fill_mesh(obj.data, result)
+    mesh = mesh_build.fill_mesh(obj.data, result)
     mesh_s = time.perf_counter() - t_mesh
-    material.assign(obj.data)
+    material.assign(mesh)
     obj.matrix_world = sampled.matrix
     _store(obj, source, merged)
     if progress:

@@ -26,41 +26,84 @@ def _i32(a: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(a, dtype=np.int32).ravel()
 
 
-def _fill_fast(
-    mesh: bpy.types.Mesh,
-    vertices: np.ndarray,
-    triangles: np.ndarray,
-    edges: np.ndarray,
-    corner_edges: np.ndarray,
-) -> None:
-    nf = len(triangles)
-    mesh.vertices.add(len(vertices))
-    mesh.edges.add(len(edges))
-    mesh.loops.add(3 * nf)
-    mesh.polygons.add(nf)
-    mesh.polygons.foreach_set("loop_start", np.arange(0, 3 * nf, 3, dtype=np.int32))
-    attributes = mesh.attributes
-    attributes["position"].data.foreach_set("vector", _f32(vertices))
-    attributes[".corner_vert"].data.foreach_set("value", _i32(triangles))
-    attributes[".edge_verts"].data.foreach_set("value", _i32(edges))
-    attributes[".corner_edge"].data.foreach_set("value", _i32(corner_edges))
-    mesh.update()
+#: Name prefix of the cached triangle templates (dot-prefixed: hidden in the UI). They have
+#: no users, so they are never saved into the .blend.
+TEMPLATE_PREFIX = ".knitwear triangles "
+#: Templates kept at once: the latest knit's face count and one before it (a redo that changes
+#: the ring segments or the stitch count, then changes them back).
+MAX_TEMPLATES = 2
+#: Custom property on a knit mesh: the core's topology key (hex) of the buffers it holds.
+TOPOLOGY_PROPERTY = "knitwear_topology"
 
 
-def _fill_classic(mesh: bpy.types.Mesh, vertices: np.ndarray, triangles: np.ndarray) -> None:
-    nf = len(triangles)
-    mesh.vertices.add(len(vertices))
-    mesh.loops.add(3 * nf)
-    mesh.polygons.add(nf)
-    mesh.vertices.foreach_set("co", _f32(vertices))
-    mesh.loops.foreach_set("vertex_index", _i32(triangles))
-    mesh.polygons.foreach_set("loop_start", np.arange(0, 3 * nf, 3, dtype=np.int32))
-    mesh.update(calc_edges=True)
+def _triangle_template(nf: int) -> bpy.types.Mesh:
+    """A mesh of ``nf`` triangles with no vertices, its face offsets set.
+
+    Setting face offsets from Python goes through RNA element by element (about 0.1 s per
+    million faces, measured), the one slow step of building a mesh. A copy of a mesh shares
+    its arrays until written (about 0.1 ms), so the offsets are paid once per face count and
+    a redo, an update or a re-knit of the same size gets them for free.
+    """
+    name = f"{TEMPLATE_PREFIX}{nf}"
+    template = bpy.data.meshes.get(name)
+    if template is not None:
+        if len(template.polygons) == nf and len(template.loops) == 3 * nf:
+            return template
+        bpy.data.meshes.remove(template)
+    stale = [m for m in bpy.data.meshes if m.name.startswith(TEMPLATE_PREFIX) and m.users == 0]
+    for old in stale[: max(0, len(stale) - (MAX_TEMPLATES - 1))]:
+        bpy.data.meshes.remove(old)
+    template = bpy.data.meshes.new(name)
+    template.loops.add(3 * nf)
+    template.polygons.add(nf)
+    template.polygons.foreach_set("loop_start", np.arange(0, 3 * nf, 3, dtype=np.int32))
+    return template
+
+
+def _fill_fast(name: str, result: object) -> bpy.types.Mesh:
+    """A new mesh from a template copy, all topology written as attributes with the edges
+    the core computed, so that `Mesh.update()` hashes nothing."""
+    mesh = _triangle_template(len(result.triangles)).copy()
+    try:
+        mesh.name = name
+        mesh.vertices.add(len(result.vertices))
+        mesh.edges.add(len(result.edges))
+        attributes = mesh.attributes
+        attributes["position"].data.foreach_set("vector", _f32(result.vertices))
+        attributes[".corner_vert"].data.foreach_set("value", _i32(result.triangles))
+        attributes[".edge_verts"].data.foreach_set("value", _i32(result.edges))
+        attributes[".corner_edge"].data.foreach_set("value", _i32(result.corner_edges))
+        mesh.update()
+    except BaseException:
+        bpy.data.meshes.remove(mesh)
+        raise
+    return mesh
+
+
+def _fill_classic(name: str, result: object) -> bpy.types.Mesh:
+    mesh = bpy.data.meshes.new(name)
+    try:
+        nf = len(result.triangles)
+        mesh.vertices.add(len(result.vertices))
+        mesh.loops.add(3 * nf)
+        mesh.polygons.add(nf)
+        mesh.vertices.foreach_set("co", _f32(result.vertices))
+        mesh.loops.foreach_set("vertex_index", _i32(result.triangles))
+        mesh.polygons.foreach_set("loop_start", np.arange(0, 3 * nf, 3, dtype=np.int32))
+        mesh.update(calc_edges=True)
+    except BaseException:
+        bpy.data.meshes.remove(mesh)
+        raise
+    return mesh
 
 
 def _set_colors(mesh: bpy.types.Mesh, colors: np.ndarray) -> None:
-    # FLOAT_COLOR fills at memory speed; BYTE_COLOR would convert per element (40x slower).
-    attribute = mesh.color_attributes.new(COLOR_ATTRIBUTE, "FLOAT_COLOR", "POINT")
+    attribute = mesh.color_attributes.get(COLOR_ATTRIBUTE)
+    if attribute is None or attribute.data_type != "FLOAT_COLOR" or attribute.domain != "POINT":
+        if attribute is not None:
+            mesh.color_attributes.remove(attribute)
+        # FLOAT_COLOR fills at memory speed; BYTE_COLOR would convert per element (40x slower).
+        attribute = mesh.color_attributes.new(COLOR_ATTRIBUTE, "FLOAT_COLOR", "POINT")
     attribute.data.foreach_set("color", _f32(colors))
     # Active for painting and the viewport, default for rendering (Workbench "Attribute",
     # and the Color Attribute node when it names no attribute).
@@ -68,29 +111,60 @@ def _set_colors(mesh: bpy.types.Mesh, colors: np.ndarray) -> None:
     mesh.attributes.default_color_name = attribute.name
 
 
-def fill_mesh(mesh: bpy.types.Mesh, result: object) -> None:
-    """Replace all of ``mesh``'s geometry with a `knitwear.KnitResult`.
+def _topology_key(result: object) -> str:
+    return format(int(result.stats["topology_key"]), "016x")
 
-    Materials stay; every other attribute is rebuilt. Faces are smooth shaded.
-    """
-    mesh.clear_geometry()
+
+def _same_topology(mesh: bpy.types.Mesh, result: object) -> bool:
+    return (
+        mesh.get(TOPOLOGY_PROPERTY) == _topology_key(result)
+        and len(mesh.vertices) == len(result.vertices)
+        and len(mesh.polygons) == len(result.triangles)
+        and len(mesh.edges) == len(result.edges)
+    )
+
+
+def _build(name: str, result: object) -> bpy.types.Mesh:
     try:
-        _fill_fast(mesh, result.vertices, result.triangles, result.edges, result.corner_edges)
+        mesh = _fill_fast(name, result)
     except (KeyError, RuntimeError, TypeError, ValueError):
         # An internal attribute name changed or refused the data: the public API is slower
         # but stable.
-        mesh.clear_geometry()
-        _fill_classic(mesh, result.vertices, result.triangles)
-    _set_colors(mesh, result.colors)
-    mesh.shade_smooth()
-
-
-def new_mesh(name: str, result: object) -> bpy.types.Mesh:
-    """A new mesh datablock holding a `knitwear.KnitResult`."""
-    mesh = bpy.data.meshes.new(name)
+        mesh = _fill_classic(name, result)
     try:
-        fill_mesh(mesh, result)
+        _set_colors(mesh, result.colors)
+        mesh.shade_smooth()
+        mesh[TOPOLOGY_PROPERTY] = _topology_key(result)
     except BaseException:
         bpy.data.meshes.remove(mesh)
         raise
     return mesh
+
+
+def fill_mesh(mesh: bpy.types.Mesh, result: object) -> bpy.types.Mesh:
+    """Make ``mesh`` hold a `knitwear.KnitResult`; return the mesh that now does.
+
+    Where the result has the topology ``mesh`` already holds (a new seed, colour, fluffiness or
+    a deformed source: the core's topology key says so), only positions and colours are
+    written, in place. Otherwise a new mesh is built and takes ``mesh``'s place everywhere
+    (`ID.user_remap`), with its name and materials; ``mesh`` is removed. Either way every
+    object that used ``mesh`` shows the result.
+    """
+    if _same_topology(mesh, result):
+        mesh.attributes["position"].data.foreach_set("vector", _f32(result.vertices))
+        _set_colors(mesh, result.colors)
+        mesh.update()
+        return mesh
+    name = mesh.name
+    new = _build(name + ".new", result)
+    for slot_material in mesh.materials:
+        new.materials.append(slot_material)
+    mesh.user_remap(new)
+    bpy.data.meshes.remove(mesh)
+    new.name = name
+    return new
+
+
+def new_mesh(name: str, result: object) -> bpy.types.Mesh:
+    """A new mesh datablock holding a `knitwear.KnitResult`."""
+    return _build(name, result)

@@ -51,7 +51,12 @@ SOURCES = {"nurbs_patch": nurbs_patch, "nurbs_sphere": nurbs_sphere, "uv_mesh": 
 
 
 def data_counts() -> dict[str, int]:
-    return {kind: len(getattr(bpy.data, kind)) for kind in DATA_KINDS}
+    """Datablocks a user sees, by kind. Dot-prefixed names are Blender's hidden data (the
+    add-on's cached triangle templates: unused, never saved)."""
+    return {
+        kind: sum(not d.name.startswith(".") for d in getattr(bpy.data, kind))
+        for kind in DATA_KINDS
+    }
 
 
 def _array(collection: bpy.types.bpy_prop_collection, attr: str, width: int) -> np.ndarray:

@@ -115,7 +115,7 @@ def test_update_rebuilds_in_place(api: ModuleType) -> None:
     knit.knitwear.courses = 2 * SMALL["courses"]
     assert bpy.ops.object.knitwear_update() == {"FINISHED"}
     expected = api.knit_result(source, **api.settings_from(knit))
-    assert knit.data.name == mesh_name and len(bpy.data.meshes) == 1
+    assert knit.data.name == mesh_name and data_counts()["meshes"] == 1
     assert len(knit.data.polygons) == len(expected.triangles) > triangles_before
     np.testing.assert_array_equal(positions(knit.data), expected.vertices)
 
@@ -124,6 +124,33 @@ def test_update_rebuilds_in_place(api: ModuleType) -> None:
     np.testing.assert_array_equal(
         positions(knit.data), api.knit_result(source, **api.settings_from(knit)).vertices
     )
+
+
+def test_update_rewrites_in_place_when_only_colours_change(api: ModuleType) -> None:
+    source = nurbs_patch()
+    knit = api.knit_object(source, **SMALL)
+    mesh = knit.data
+    other_user = bpy.data.objects.new("Instance", mesh)
+    bpy.context.scene.collection.objects.link(other_user)
+
+    api.update_knit(knit, seed=7, color_mode="STRIPES", fluffiness=1.0)
+    assert knit.data == mesh, "same topology: the mesh datablock is rewritten in place"
+    expected = api.knit_result(source, **api.settings_from(knit))
+    np.testing.assert_array_equal(positions(mesh), expected.vertices)
+    np.testing.assert_array_equal(colors(mesh), expected.colors)
+    np.testing.assert_array_equal(corner_verts(mesh), expected.triangles.ravel())
+
+    # A new stitch count changes the topology: a new mesh takes the old one's place for every
+    # user, keeping its name and material.
+    name, material = mesh.name, mesh.materials[0]
+    api.update_knit(knit, courses=SMALL["courses"] + 3)
+    assert other_user.data == knit.data and knit.data.name == name
+    assert list(knit.data.materials) == [material]
+    expected = api.knit_result(source, **api.settings_from(knit))
+    np.testing.assert_array_equal(positions(knit.data), expected.vertices)
+    np.testing.assert_array_equal(corner_verts(knit.data), expected.triangles.ravel())
+    assert knit.data.validate(verbose=True) is False
+    assert data_counts()["meshes"] == 1
 
 
 def test_update_follows_the_source(api: ModuleType) -> None:
