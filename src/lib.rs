@@ -11,6 +11,7 @@
 //! | lattice | [`lattice`] | tile corners in (u,v), one tile per stitch |
 //! | skeleton | [`skeleton`] | key points, normal offsets, cardinal-spline yarn centrelines |
 //! | geometry | [`geometry`] | fluffy triangle bundles swept along the centrelines |
+//! | pile | [`pile`] | warp-knit plush: fractal-noise pile directions, view-dependent slices |
 //! | measure | [`metrics`] | clearance between yarns |
 //! | pipeline | [`knit`] | the whole path, budget checks, NumPy-ready buffers |
 //!
@@ -25,6 +26,7 @@ pub mod metrics;
 pub mod output_buffer;
 pub mod parallel;
 pub mod pattern;
+pub mod pile;
 pub mod skeleton;
 pub mod surface;
 
