@@ -8,16 +8,18 @@ use rayon::prelude::*;
 
 use crate::budget::{self, OutputSize};
 use crate::error::{KnitError, Result};
-use crate::geometry::{build_bundle, bundle_counts, BundleSettings, PieceBuffers};
+use crate::geometry::{
+    build_bundle, bundle_counts, BundleCounts, BundleSettings, PieceBuffers, TopologyBuffers,
+};
 use crate::lattice::{Lattice, ROW_OVERHANG};
 use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
 use crate::output_buffer;
 use crate::parallel::{run_in_pool, split_lengths};
 use crate::pattern::{ColorPattern, StitchPattern};
 use crate::skeleton::{
-    built_stitches, sample_piece, tuning, yarn_pieces, SplineSampling, YarnPiece,
+    built_stitches, sample_piece, tuning, yarn_pieces, NormalOffsets, SplineSampling, YarnPiece,
 };
-use crate::surface::Surface;
+use crate::surface::{Surface, UvRect};
 
 /// Gauge used when neither counts nor a gauge are given: 20 stitches and 28 rows per 10 cm
 /// (a worsted-weight yarn on 4.5 mm needles).
@@ -99,6 +101,11 @@ pub struct KnitParams {
     pub gauge: Option<(f32, f32)>,
     /// Yarn radius. Default: [`DEFAULT_RADIUS_PER_STITCH_WIDTH`] of the stitch width.
     pub yarn_radius: Option<f32>,
+    /// Stitch width and height (scene units) that the normal offsets are tuned for and the
+    /// default yarn radius follows. Default: measured on the surface. An animated knit pins
+    /// the values measured at its rest pose, so a stretched frame moves the yarn but never
+    /// re-tunes it (which would change every loop's shape from one frame to the next).
+    pub stitch_size: Option<(f32, f32)>,
     /// Apex push as a fraction of the radius, 0..=4. Default: 0.5.
     pub fluffiness: f32,
     /// Points per yarn ring, 3..=64. Default: 6.
@@ -129,6 +136,7 @@ impl Default for KnitParams {
             wales: None,
             gauge: None,
             yarn_radius: None,
+            stitch_size: None,
             fluffiness: 0.5,
             ring_segments: 6,
             samples_per_loop: 16,
@@ -231,6 +239,13 @@ fn validate(p: &KnitParams) -> Result<()> {
             )));
         }
     }
+    if let Some((w, h)) = p.stitch_size {
+        if !(w.is_finite() && h.is_finite() && w > 0.0 && h > 0.0) {
+            return Err(KnitError::Parameter(format!(
+                "stitch size must be a positive width and height, not ({w}, {h})"
+            )));
+        }
+    }
     if let Some(r) = p.yarn_radius {
         if !(r.is_finite() && r > 0.0) {
             return Err(KnitError::Parameter(format!(
@@ -266,94 +281,416 @@ fn stitch_counts(surface: &dyn Surface, p: &KnitParams) -> Result<(usize, usize)
     Ok((courses, wales))
 }
 
-/// Knits `pattern` over `surface`.
+/// Knits `pattern` over `surface`: [`PreparedKnit::new`] then [`PreparedKnit::build`].
 pub fn knit(surface: &dyn Surface, pattern: &StitchPattern, p: &KnitParams) -> Result<KnitOutput> {
     let start = Instant::now();
-    validate(p)?;
-    let (len_u, len_v) = surface.extent();
-    if !(len_u.is_finite() && len_v.is_finite() && len_u > 0.0 && len_v > 0.0) {
-        return Err(KnitError::Surface(format!(
-            "the surface has no extent to knit over (lengths {len_u} x {len_v} along u and v)"
-        )));
-    }
-    let (courses, wales) = stitch_counts(surface, p)?;
-    let m = p.ring_segments;
-    let s = p.samples_per_loop;
-    let stitches = courses as u64 * wales as u64;
-    budget::check(
-        &OutputSize::upper_bound(stitches, s as u64, m as u64),
-        p.budget_bytes,
-        stitches,
-    )?;
+    let prepared = PreparedKnit::new(surface, pattern, p)?;
+    let mut out = prepared.build(surface)?;
+    out.stats.seconds = start.elapsed().as_secs_f64();
+    Ok(out)
+}
 
-    let cyclic_v = surface.cyclic_v();
-    let stitch_width = len_u / wales as f32;
-    let stitch_height = if cyclic_v {
-        len_v / courses as f32
-    } else {
-        len_v / (courses as f32 + 2.0 * ROW_OVERHANG)
-    };
-    let radius = p
-        .yarn_radius
-        .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * stitch_width);
-    if 2.0 * radius > stitch_width.min(2.0 * stitch_height) {
-        return Err(KnitError::Parameter(format!(
-            "the yarn ({:.4} thick) is thicker than a stitch ({stitch_width:.4} x \
-             {stitch_height:.4}): use a thinner yarn or fewer stitches",
-            2.0 * radius
-        )));
-    }
-    let (offsets, flat_clearance) = tuning::tuned_offsets(
-        pattern,
-        stitch_width,
-        stitch_height,
-        2.0 * radius,
-        p.tension,
-    );
+/// A knit bound to a surface layout: everything that does not depend on where the surface
+/// is in space, fixed once (stitch counts, yarn radius, stitch size and the tuned offsets,
+/// lattice, which stitches are built, yarn pieces, buffer layout).
+///
+/// [`build`](Self::build) makes the whole output for a surface of that layout (the same
+/// surface, or the same surface deformed: moved by an armature, a shape key, a modifier);
+/// [`positions_into`](Self::positions_into) makes only the vertex positions, into a buffer
+/// the caller keeps. Both run the same code, consume the same per-stitch random streams and
+/// so give bit-identical positions, and the topology of every build is the same: this is
+/// what lets a knit follow an animated surface without flicker, and lets a farm render frame
+/// N alone and get what a whole sequence gets.
+#[derive(Debug, Clone)]
+pub struct PreparedKnit {
+    params: KnitParams,
+    pattern: StitchPattern,
+    lattice: Lattice,
+    pieces: Vec<YarnPiece>,
+    offsets: NormalOffsets,
+    sampling: SplineSampling,
+    bundle: BundleSettings,
+    /// Centreline samples per piece.
+    samples: Vec<usize>,
+    counts: Vec<BundleCounts>,
+    total: OutputSize,
+    /// The (u,v) layout the knit was prepared for.
+    domain: UvRect,
+    cyclic: (bool, bool),
+    /// Everything but the per-build figures.
+    stats: KnitStats,
+    radius: f32,
+}
 
-    let lattice = Lattice::regular(
-        surface.domain(),
-        courses,
-        wales,
-        surface.cyclic_u(),
-        cyclic_v,
-    );
-    let sampling = SplineSampling {
-        samples_per_loop: s,
-        tension: p.tension,
-    };
-    let bundle = BundleSettings {
-        radius,
-        ring_segments: m,
-        fluffiness: p.fluffiness,
-        color_variation: p.color_variation,
-        seed: p.seed,
-    };
+impl PreparedKnit {
+    /// Validates the settings, fixes counts, radius and offsets from `surface`, lays out the
+    /// lattice and checks the output against the budget (before anything large is allocated).
+    pub fn new(surface: &dyn Surface, pattern: &StitchPattern, p: &KnitParams) -> Result<Self> {
+        validate(p)?;
+        let (len_u, len_v) = surface.extent();
+        if !(len_u.is_finite() && len_v.is_finite() && len_u > 0.0 && len_v > 0.0) {
+            return Err(KnitError::Surface(format!(
+                "the surface has no extent to knit over (lengths {len_u} x {len_v} along u \
+                 and v)"
+            )));
+        }
+        let (courses, wales) = stitch_counts(surface, p)?;
+        let m = p.ring_segments;
+        let s = p.samples_per_loop;
+        let stitches = courses as u64 * wales as u64;
+        budget::check(
+            &OutputSize::upper_bound(stitches, s as u64, m as u64),
+            p.budget_bytes,
+            stitches,
+        )?;
 
-    run_in_pool(p.threads, || {
-        let built = built_stitches(surface, &lattice);
-        let pieces = yarn_pieces(&lattice, &built);
-        let built_count = built.iter().filter(|b| **b).count();
-        build(
-            surface, pattern, p, &lattice, &pieces, &offsets, &sampling, &bundle,
-        )
-        .map(|mut out| {
-            out.yarn_radius = radius;
-            out.stats.courses = courses;
-            out.stats.wales = wales;
-            out.stats.stitches = built_count;
-            out.stats.stitches_skipped = courses * wales - built_count;
-            out.stats.stitch_width = stitch_width;
-            out.stats.stitch_height = stitch_height;
-            out.stats.flat_clearance = flat_clearance;
-            if p.measure_clearance {
-                let c = measure(&out);
-                out.stats.clearance = Some((c.0, c.1));
-            }
-            out.stats.seconds = start.elapsed().as_secs_f64();
-            out
+        let cyclic_v = surface.cyclic_v();
+        let (stitch_width, stitch_height) = match p.stitch_size {
+            Some(size) => size,
+            None => (
+                len_u / wales as f32,
+                if cyclic_v {
+                    len_v / courses as f32
+                } else {
+                    len_v / (courses as f32 + 2.0 * ROW_OVERHANG)
+                },
+            ),
+        };
+        let radius = p
+            .yarn_radius
+            .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * stitch_width);
+        if 2.0 * radius > stitch_width.min(2.0 * stitch_height) {
+            return Err(KnitError::Parameter(format!(
+                "the yarn ({:.4} thick) is thicker than a stitch ({stitch_width:.4} x \
+                 {stitch_height:.4}): use a thinner yarn or fewer stitches",
+                2.0 * radius
+            )));
+        }
+        let (offsets, flat_clearance) = tuning::tuned_offsets(
+            pattern,
+            stitch_width,
+            stitch_height,
+            2.0 * radius,
+            p.tension,
+        );
+
+        let domain = surface.domain();
+        let cyclic = (surface.cyclic_u(), cyclic_v);
+        let lattice = Lattice::regular(domain, courses, wales, cyclic.0, cyclic.1);
+        let sampling = SplineSampling {
+            samples_per_loop: s,
+            tension: p.tension,
+        };
+        let bundle = BundleSettings {
+            radius,
+            ring_segments: m,
+            fluffiness: p.fluffiness,
+            color_variation: p.color_variation,
+            seed: p.seed,
+        };
+        let (pieces, built_count) = run_in_pool(p.threads, || {
+            let built = built_stitches(surface, &lattice);
+            let count = built.iter().filter(|b| **b).count();
+            (yarn_pieces(&lattice, &built), count)
+        })?;
+        let samples: Vec<usize> = pieces.iter().map(|pc| pc.sample_count(s)).collect();
+        let counts: Vec<BundleCounts> = pieces
+            .iter()
+            .zip(&samples)
+            .map(|(pc, &n)| bundle_counts(n, m, pc.closed))
+            .collect();
+        let total = OutputSize {
+            vertices: counts.iter().map(|c| c.vertices as u64).sum(),
+            triangles: counts.iter().map(|c| c.triangles as u64).sum(),
+            edges: counts.iter().map(|c| c.edges as u64).sum(),
+            samples: samples.iter().map(|&n| n as u64).sum(),
+        };
+        let built: u64 = pieces.iter().map(|pc| pc.stitches as u64).sum();
+        budget::check(&total, p.budget_bytes, built)?;
+
+        let stats = KnitStats {
+            courses,
+            wales,
+            stitches: built_count,
+            stitches_skipped: courses * wales - built_count,
+            vertices: total.vertices as usize,
+            triangles: total.triangles as usize,
+            yarn_pieces: pieces.len(),
+            stitch_width,
+            stitch_height,
+            flat_clearance,
+            topology_key: topology_key(m, &pieces, &samples),
+            ..Default::default()
+        };
+        Ok(Self {
+            params: p.clone(),
+            pattern: pattern.clone(),
+            lattice,
+            pieces,
+            offsets,
+            sampling,
+            bundle,
+            samples,
+            counts,
+            total,
+            domain,
+            cyclic,
+            stats,
+            radius,
         })
-    })?
+    }
+
+    /// Figures known before building (counts, sizes, topology key); `seconds` and
+    /// `clearance` are left empty.
+    pub fn stats(&self) -> &KnitStats {
+        &self.stats
+    }
+
+    /// The yarn radius, scene units.
+    pub fn yarn_radius(&self) -> f32 {
+        self.radius
+    }
+
+    /// Vertices of every build: the length of [`positions_into`](Self::positions_into)'s
+    /// buffer is three times this.
+    pub fn vertex_count(&self) -> usize {
+        self.total.vertices as usize
+    }
+
+    fn check_layout(&self, surface: &dyn Surface) -> Result<()> {
+        let cyclic = (surface.cyclic_u(), surface.cyclic_v());
+        if surface.domain() != self.domain || cyclic != self.cyclic {
+            return Err(KnitError::Surface(format!(
+                "the surface's (u,v) layout changed since it was knitted (domain {:?} -> \
+                 {:?}, cyclic {:?} -> {:?}): knit it again",
+                self.domain,
+                surface.domain(),
+                self.cyclic,
+                cyclic
+            )));
+        }
+        Ok(())
+    }
+
+    /// The whole output for `surface` (the prepared one, or it deformed).
+    pub fn build(&self, surface: &dyn Surface) -> Result<KnitOutput> {
+        let start = Instant::now();
+        self.check_layout(surface)?;
+        let mut out = run_in_pool(self.params.threads, || self.build_in_pool(surface))??;
+        out.yarn_radius = self.radius;
+        out.stats = KnitStats {
+            seconds: start.elapsed().as_secs_f64(),
+            ..self.stats.clone()
+        };
+        if self.params.measure_clearance {
+            out.stats.clearance = Some(measure(&out));
+        }
+        Ok(out)
+    }
+
+    /// Only the vertex positions for `surface` (the prepared one, or it deformed), into
+    /// `positions` (`3 * vertex_count()` floats): the same values [`build`](Self::build)
+    /// writes, without allocating the rest. The per-frame path of an animated knit.
+    pub fn positions_into(&self, surface: &dyn Surface, positions: &mut [f32]) -> Result<()> {
+        self.check_layout(surface)?;
+        let nv = self.vertex_count();
+        if positions.len() != 3 * nv {
+            return Err(KnitError::Parameter(format!(
+                "the positions buffer holds {} floats; this knit needs {} ({nv} vertices x 3)",
+                positions.len(),
+                3 * nv
+            )));
+        }
+        run_in_pool(self.params.threads, || {
+            let centrelines = self.centrelines(surface);
+            let pos = split_lengths(
+                positions,
+                &self
+                    .counts
+                    .iter()
+                    .map(|c| 3 * c.vertices)
+                    .collect::<Vec<_>>(),
+            );
+            pos.into_par_iter()
+                .zip(centrelines.par_pieces())
+                .enumerate()
+                .for_each(|(i, (positions, (a, b, c)))| {
+                    let mut bufs = PieceBuffers::positions_only(positions);
+                    self.bundle_piece(i, a, b, c, &mut bufs);
+                });
+        })
+    }
+
+    /// Samples every piece's centreline (points, surface normals, owning stitch), in parallel.
+    fn centrelines(&self, surface: &dyn Surface) -> Centrelines {
+        let n = self.total.samples as usize;
+        let mut c = Centrelines {
+            points: vec![Vec3::ZERO; n],
+            normals: vec![Vec3::ZERO; n],
+            owner: vec![0u32; n],
+            lengths: self.samples.clone(),
+        };
+        {
+            let pts = split_lengths(&mut c.points, &self.samples);
+            let nrm = split_lengths(&mut c.normals, &self.samples);
+            let own = split_lengths(&mut c.owner, &self.samples);
+            self.pieces
+                .par_iter()
+                .zip(pts)
+                .zip(nrm)
+                .zip(own)
+                .for_each(|(((pc, a), b), o)| {
+                    sample_piece(
+                        surface,
+                        &self.lattice,
+                        &self.pattern,
+                        &self.offsets,
+                        &self.sampling,
+                        pc,
+                        a,
+                        b,
+                        o,
+                    );
+                });
+        }
+        c
+    }
+
+    /// Sweeps piece `i`'s bundle into `bufs` (whatever parts of the output they hold).
+    fn bundle_piece(
+        &self,
+        i: usize,
+        points: &[Vec3],
+        normals: &[Vec3],
+        owner: &[u32],
+        bufs: &mut PieceBuffers,
+    ) {
+        let pc = self.pieces[i];
+        let wales = self.lattice.wales;
+        let owner_of = |k: usize| (pc.course, (pc.first_wale + owner[k] as usize) % wales);
+        let image = self.params.color_image.as_ref();
+        let lattice = &self.lattice;
+        let colors = self.params.colors.as_ref();
+        let color_of = |course: usize, wale: usize| -> [f32; 3] {
+            match (image, colors) {
+                (Some(img), _) => img.sample(lattice.tile_center(course, wale)),
+                (None, Some(c)) => c.color(course, wale),
+                (None, None) => DEFAULT_YARN_COLOR,
+            }
+        };
+        build_bundle(
+            points,
+            normals,
+            &owner_of,
+            &color_of,
+            pc.closed,
+            &self.bundle,
+            bufs,
+        );
+    }
+
+    fn build_in_pool(&self, surface: &dyn Surface) -> Result<KnitOutput> {
+        let nv = self.total.vertices as usize;
+        let nt = self.total.triangles as usize;
+        let ne = self.total.edges as usize;
+        let mut out = KnitOutput {
+            positions: output_buffer::zeroed(3 * nv),
+            colors: output_buffer::zeroed(4 * nv),
+            triangles: output_buffer::zeroed(3 * nt),
+            corner_edges: output_buffer::zeroed(3 * nt),
+            edges: output_buffer::zeroed(2 * ne),
+            ..Default::default()
+        };
+        let centrelines = self.centrelines(surface);
+
+        let (mut vbase, mut ebase) = (
+            Vec::with_capacity(self.pieces.len()),
+            Vec::with_capacity(self.pieces.len()),
+        );
+        let (mut v, mut e) = (0usize, 0usize);
+        for c in &self.counts {
+            vbase.push(v);
+            ebase.push(e);
+            v += c.vertices;
+            e += c.edges;
+        }
+        let lengths = |f: &dyn Fn(&BundleCounts) -> usize| -> Vec<usize> {
+            self.counts.iter().map(f).collect()
+        };
+        let pos = split_lengths(&mut out.positions, &lengths(&|c| 3 * c.vertices));
+        let col = split_lengths(&mut out.colors, &lengths(&|c| 4 * c.vertices));
+        let tri = split_lengths(&mut out.triangles, &lengths(&|c| 3 * c.triangles));
+        let ced = split_lengths(&mut out.corner_edges, &lengths(&|c| 3 * c.triangles));
+        let edg = split_lengths(&mut out.edges, &lengths(&|c| 2 * c.edges));
+        pos.into_par_iter()
+            .zip(col)
+            .zip(tri)
+            .zip(ced)
+            .zip(edg)
+            .zip(centrelines.par_pieces())
+            .enumerate()
+            .for_each(
+                |(i, (((((positions, colors), corner_verts), corner_edges), edge_verts), cl))| {
+                    let mut bufs = PieceBuffers {
+                        vertex_base: vbase[i],
+                        edge_base: ebase[i],
+                        positions,
+                        colors: Some(colors),
+                        topology: Some(TopologyBuffers {
+                            corner_verts,
+                            corner_edges,
+                            edge_verts,
+                        }),
+                    };
+                    self.bundle_piece(i, cl.0, cl.1, cl.2, &mut bufs);
+                },
+            );
+
+        out.centerline = centrelines
+            .points
+            .iter()
+            .flat_map(|q| q.to_array())
+            .collect();
+        out.yarn_offsets = std::iter::once(0i64)
+            .chain(self.samples.iter().scan(0i64, |acc, &n| {
+                *acc += n as i64;
+                Some(*acc)
+            }))
+            .collect();
+        out.yarn_course = self.pieces.iter().map(|pc| pc.course as i32).collect();
+        out.yarn_closed = self.pieces.iter().map(|pc| pc.closed).collect();
+        Ok(out)
+    }
+}
+
+/// Sampled centrelines of all pieces, concatenated.
+struct Centrelines {
+    points: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    owner: Vec<u32>,
+    lengths: Vec<usize>,
+}
+
+impl Centrelines {
+    /// `(points, normals, owner)` of each piece, as a parallel iterator.
+    fn par_pieces(&self) -> impl IndexedParallelIterator<Item = (&[Vec3], &[Vec3], &[u32])> {
+        let mut at = 0;
+        let ranges: Vec<_> = self
+            .lengths
+            .iter()
+            .map(|&n| {
+                at += n;
+                at - n..at
+            })
+            .collect();
+        ranges.into_par_iter().map(move |r| {
+            (
+                &self.points[r.clone()],
+                &self.normals[r.clone()],
+                &self.owner[r],
+            )
+        })
+    }
 }
 
 /// Clearance (min, p01) of a finished knit, in yarn diameters.
@@ -395,154 +732,4 @@ fn vec3_slice(v: &[f32]) -> &[Vec3] {
     let n = v.len() / 3;
     // SAFETY: Vec3 is #[repr(C)] { x, y, z: f32 }, size 12, align 4, like [f32; 3].
     unsafe { std::slice::from_raw_parts(v.as_ptr().cast::<Vec3>(), n) }
-}
-
-#[allow(clippy::too_many_arguments)]
-fn build(
-    surface: &dyn Surface,
-    pattern: &StitchPattern,
-    p: &KnitParams,
-    lattice: &Lattice,
-    pieces: &[YarnPiece],
-    offsets: &crate::skeleton::NormalOffsets,
-    sampling: &SplineSampling,
-    bundle: &BundleSettings,
-) -> Result<KnitOutput> {
-    let m = bundle.ring_segments;
-    let samples: Vec<usize> = pieces
-        .iter()
-        .map(|pc| pc.sample_count(sampling.samples_per_loop))
-        .collect();
-    let counts: Vec<_> = pieces
-        .iter()
-        .zip(&samples)
-        .map(|(pc, &n)| bundle_counts(n, m, pc.closed))
-        .collect();
-    let total = OutputSize {
-        vertices: counts.iter().map(|c| c.vertices as u64).sum(),
-        triangles: counts.iter().map(|c| c.triangles as u64).sum(),
-        edges: counts.iter().map(|c| c.edges as u64).sum(),
-        samples: samples.iter().map(|&n| n as u64).sum(),
-    };
-    let stitches: u64 = pieces.iter().map(|pc| pc.stitches as u64).sum();
-    budget::check(&total, p.budget_bytes, stitches)?;
-
-    let n_samples = total.samples as usize;
-    let mut points = vec![Vec3::ZERO; n_samples];
-    let mut normals = vec![Vec3::ZERO; n_samples];
-    let mut owner = vec![0u32; n_samples];
-    {
-        let pts = split_lengths(&mut points, &samples);
-        let nrm = split_lengths(&mut normals, &samples);
-        let own = split_lengths(&mut owner, &samples);
-        pieces
-            .par_iter()
-            .zip(pts)
-            .zip(nrm)
-            .zip(own)
-            .for_each(|(((pc, a), b), c)| {
-                sample_piece(surface, lattice, pattern, offsets, sampling, pc, a, b, c);
-            });
-    }
-
-    let nv = total.vertices as usize;
-    let nt = total.triangles as usize;
-    let ne = total.edges as usize;
-    let mut out = KnitOutput {
-        positions: output_buffer::zeroed(3 * nv),
-        colors: output_buffer::zeroed(4 * nv),
-        triangles: output_buffer::zeroed(3 * nt),
-        corner_edges: output_buffer::zeroed(3 * nt),
-        edges: output_buffer::zeroed(2 * ne),
-        ..Default::default()
-    };
-
-    let solid = ColorPattern::solid(DEFAULT_YARN_COLOR)?;
-    let colors = p.colors.as_ref().unwrap_or(&solid);
-    let image = p.color_image.as_ref();
-    let color_of = |course: usize, wale: usize| -> [f32; 3] {
-        match image {
-            Some(img) => img.sample(lattice.tile_center(course, wale)),
-            None => colors.color(course, wale),
-        }
-    };
-
-    let (mut vbase, mut ebase) = (
-        Vec::with_capacity(pieces.len()),
-        Vec::with_capacity(pieces.len()),
-    );
-    let (mut v, mut e) = (0usize, 0usize);
-    for c in &counts {
-        vbase.push(v);
-        ebase.push(e);
-        v += c.vertices;
-        e += c.edges;
-    }
-    let pos = split_lengths(
-        &mut out.positions,
-        &counts.iter().map(|c| 3 * c.vertices).collect::<Vec<_>>(),
-    );
-    let col = split_lengths(
-        &mut out.colors,
-        &counts.iter().map(|c| 4 * c.vertices).collect::<Vec<_>>(),
-    );
-    let tri = split_lengths(
-        &mut out.triangles,
-        &counts.iter().map(|c| 3 * c.triangles).collect::<Vec<_>>(),
-    );
-    let ced = split_lengths(
-        &mut out.corner_edges,
-        &counts.iter().map(|c| 3 * c.triangles).collect::<Vec<_>>(),
-    );
-    let edg = split_lengths(
-        &mut out.edges,
-        &counts.iter().map(|c| 2 * c.edges).collect::<Vec<_>>(),
-    );
-    let pts = split_lengths(&mut points, &samples);
-    let nrm = split_lengths(&mut normals, &samples);
-    let own = split_lengths(&mut owner, &samples);
-    let wales = lattice.wales;
-    pos.into_par_iter()
-        .zip(col)
-        .zip(tri)
-        .zip(ced)
-        .zip(edg)
-        .zip(pts)
-        .zip(nrm)
-        .zip(own)
-        .enumerate()
-        .for_each(
-            |(
-                i,
-                (((((((positions, colors), corner_verts), corner_edges), edge_verts), a), b), c),
-            )| {
-                let pc = pieces[i];
-                let owner_of = |k: usize| (pc.course, (pc.first_wale + c[k] as usize) % wales);
-                let mut bufs = PieceBuffers {
-                    vertex_base: vbase[i],
-                    edge_base: ebase[i],
-                    positions,
-                    colors,
-                    corner_verts,
-                    corner_edges,
-                    edge_verts,
-                };
-                build_bundle(a, b, &owner_of, &color_of, pc.closed, bundle, &mut bufs);
-            },
-        );
-
-    out.centerline = points.iter().flat_map(|q| q.to_array()).collect();
-    out.yarn_offsets = std::iter::once(0i64)
-        .chain(samples.iter().scan(0i64, |acc, &n| {
-            *acc += n as i64;
-            Some(*acc)
-        }))
-        .collect();
-    out.yarn_course = pieces.iter().map(|pc| pc.course as i32).collect();
-    out.yarn_closed = pieces.iter().map(|pc| pc.closed).collect();
-    out.stats.vertices = nv;
-    out.stats.triangles = nt;
-    out.stats.topology_key = topology_key(m, pieces, &samples);
-    out.stats.yarn_pieces = pieces.len();
-    Ok(out)
 }

@@ -103,6 +103,7 @@ def knit(
     wales: int | None = None,
     gauge: tuple[float, float] | None = None,
     yarn_radius: float | None = None,
+    stitch_size: tuple[float, float] | None = None,
     fluffiness: float = 0.5,
     ring_segments: int = 6,
     samples_per_loop: int = 16,
@@ -115,6 +116,55 @@ def knit(
     budget_bytes: int | None = None,
     measure_clearance: bool = False,
 ) -> KnitResult: ...
+
+class Knit:
+    """A knit bound to its surface's (u,v) layout: counts, yarn radius, stitch size and
+    buffer layout fixed once, so `build` and `positions` give one topology for the surface
+    in any pose. Same keyword settings as `knit`."""
+
+    def __init__(
+        self,
+        surface: GridSurface | MeshSurface,
+        pattern: Pattern,
+        *,
+        courses: int | None = None,
+        wales: int | None = None,
+        gauge: tuple[float, float] | None = None,
+        yarn_radius: float | None = None,
+        stitch_size: tuple[float, float] | None = None,
+        fluffiness: float = 0.5,
+        ring_segments: int = 6,
+        samples_per_loop: int = 16,
+        tension: float = 0.0,
+        seed: int = 0,
+        colors: ColorPattern | None = None,
+        color_image: npt.NDArray[np.float32] | None = None,
+        color_variation: float = 0.15,
+        threads: int | None = None,
+        budget_bytes: int | None = None,
+        measure_clearance: bool = False,
+    ) -> None: ...
+    def build(self, surface: GridSurface | MeshSurface) -> KnitResult:
+        """The whole result for `surface` (the one knitted, or it deformed)."""
+    def positions(
+        self,
+        surface: GridSurface | MeshSurface,
+        out: npt.NDArray[np.float32] | None = None,
+    ) -> npt.NDArray[np.float32]:
+        """(V, 3) float32 positions for `surface` in a new pose, bit-identical to
+        `build(surface).vertices`; written into `out` when given."""
+    @property
+    def vertex_count(self) -> int: ...
+    @property
+    def yarn_radius(self) -> float: ...
+    @property
+    def counts(self) -> tuple[int, int]:
+        """(courses, wales)."""
+    @property
+    def stitch_size(self) -> tuple[float, float]:
+        """(width, height) of a stitch the loop shapes are tuned for, scene units."""
+    @property
+    def topology_key(self) -> int: ...
 
 def measure_clearance(result: KnitResult) -> tuple[float, float]:
     """(min, 1st percentile) centreline clearance in yarn diameters."""

@@ -63,20 +63,39 @@ pub fn bundle_counts(rings: usize, m: usize, closed: bool) -> BundleCounts {
 }
 
 /// One piece's slices of the output buffers, and where its vertices and edges start in the
-/// whole mesh (indices written are global).
+/// whole mesh (indices written are global). Colours and topology are optional: the
+/// per-frame path of an animated knit writes positions only.
 pub struct PieceBuffers<'a> {
     pub vertex_base: usize,
     pub edge_base: usize,
     /// `3 * vertices` floats.
     pub positions: &'a mut [f32],
     /// `4 * vertices` floats, linear RGBA.
-    pub colors: &'a mut [f32],
+    pub colors: Option<&'a mut [f32]>,
+    pub topology: Option<TopologyBuffers<'a>>,
+}
+
+/// One piece's slices of the topology buffers.
+pub struct TopologyBuffers<'a> {
     /// `3 * triangles` vertex indices.
     pub corner_verts: &'a mut [i32],
     /// `3 * triangles` edge indices (edge from corner k to corner k+1).
     pub corner_edges: &'a mut [i32],
     /// `2 * edges` vertex indices.
     pub edge_verts: &'a mut [i32],
+}
+
+impl<'a> PieceBuffers<'a> {
+    /// Buffers that take positions only.
+    pub fn positions_only(positions: &'a mut [f32]) -> Self {
+        Self {
+            vertex_base: 0,
+            edge_base: 0,
+            positions,
+            colors: None,
+            topology: None,
+        }
+    }
 }
 
 /// A stable 64-bit mix of the seed and a stitch's (course, wale) (SplitMix64 finaliser).
@@ -126,15 +145,19 @@ pub fn build_bundle(
     }
 
     // Ring edges.
-    for i in 0..rings {
-        for k in 0..m {
-            let e = i * m + k;
-            out.edge_verts[2 * e] = (out.vertex_base + i * m + k) as i32;
-            out.edge_verts[2 * e + 1] = (out.vertex_base + i * m + (k + 1) % m) as i32;
+    if let Some(topo) = out.topology.as_mut() {
+        for i in 0..rings {
+            for k in 0..m {
+                let e = i * m + k;
+                topo.edge_verts[2 * e] = (out.vertex_base + i * m + k) as i32;
+                topo.edge_verts[2 * e + 1] = (out.vertex_base + i * m + (k + 1) % m) as i32;
+            }
         }
     }
 
     let variation = settings.color_variation.clamp(0.0, 1.0);
+    // The shade is drawn whether or not colours are written, so the random stream (and with
+    // it every apex position) is the same in a full build and a positions-only one.
     let shade = |rng: &mut ChaCha8Rng, c: [f32; 3]| -> [f32; 4] {
         let f = 1.0 + variation * (2.0 * rng.random::<f32>() - 1.0);
         [c[0] * f, c[1] * f, c[2] * f, 1.0]
@@ -152,7 +175,9 @@ pub fn build_bundle(
         let color = color_of(course, wale);
         for k in 0..m {
             let c = shade(&mut rng, color);
-            out.colors[4 * (i * m + k)..4 * (i * m + k) + 4].copy_from_slice(&c);
+            if let Some(colors) = out.colors.as_mut() {
+                colors[4 * (i * m + k)..4 * (i * m + k) + 4].copy_from_slice(&c);
+            }
         }
         if i >= pairs {
             continue;
@@ -170,7 +195,12 @@ pub fn build_bundle(
                 let av = apex_base + tri;
                 out.positions[3 * av..3 * av + 3].copy_from_slice(&apex.to_array());
                 let ac = shade(&mut rng, color);
-                out.colors[4 * av..4 * av + 4].copy_from_slice(&ac);
+                if let Some(colors) = out.colors.as_mut() {
+                    colors[4 * av..4 * av + 4].copy_from_slice(&ac);
+                }
+                let Some(topo) = out.topology.as_mut() else {
+                    continue;
+                };
 
                 let (v0, v1) = if half == 0 {
                     (edge_ring * m + k, edge_ring * m + (k + 1) % m)
@@ -183,16 +213,16 @@ pub fn build_bundle(
                 let e2 = e1 + 1;
                 let vb = out.vertex_base;
                 let eb = out.edge_base;
-                out.corner_verts[3 * tri] = (vb + v0) as i32;
-                out.corner_verts[3 * tri + 1] = (vb + v1) as i32;
-                out.corner_verts[3 * tri + 2] = (vb + av) as i32;
-                out.corner_edges[3 * tri] = (eb + ring_edge) as i32;
-                out.corner_edges[3 * tri + 1] = (eb + e1) as i32;
-                out.corner_edges[3 * tri + 2] = (eb + e2) as i32;
-                out.edge_verts[2 * e1] = (vb + v1) as i32;
-                out.edge_verts[2 * e1 + 1] = (vb + av) as i32;
-                out.edge_verts[2 * e2] = (vb + av) as i32;
-                out.edge_verts[2 * e2 + 1] = (vb + v0) as i32;
+                topo.corner_verts[3 * tri] = (vb + v0) as i32;
+                topo.corner_verts[3 * tri + 1] = (vb + v1) as i32;
+                topo.corner_verts[3 * tri + 2] = (vb + av) as i32;
+                topo.corner_edges[3 * tri] = (eb + ring_edge) as i32;
+                topo.corner_edges[3 * tri + 1] = (eb + e1) as i32;
+                topo.corner_edges[3 * tri + 2] = (eb + e2) as i32;
+                topo.edge_verts[2 * e1] = (vb + v1) as i32;
+                topo.edge_verts[2 * e1 + 1] = (vb + av) as i32;
+                topo.edge_verts[2 * e2] = (vb + av) as i32;
+                topo.edge_verts[2 * e2 + 1] = (vb + v0) as i32;
             }
         }
     }

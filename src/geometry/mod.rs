@@ -5,5 +5,6 @@ mod frames;
 
 pub use bundle::{
     build_bundle, bundle_counts, stitch_seed, BundleCounts, BundleSettings, PieceBuffers,
+    TopologyBuffers,
 };
 pub use frames::ring_frame;

@@ -12,8 +12,9 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+
 use crate::error::KnitError;
-use crate::knit::{knit as core_knit, ColorImage, KnitOutput, KnitParams};
+use crate::knit::{knit as core_knit, ColorImage, KnitOutput, KnitParams, PreparedKnit};
 use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
 use crate::pattern::{ColorPattern, StitchPattern};
 use crate::surface::{GridSurface, MeshSurface, Surface};
@@ -449,23 +450,36 @@ enum AnySurface {
     Mesh(Arc<MeshSurface>),
 }
 
-/// Knits `pattern` over `surface`. See the README for every argument.
-#[pyfunction]
-#[pyo3(signature = (
-    surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
-    fluffiness=0.5, ring_segments=6, samples_per_loop=16, tension=0.0, seed=0, colors=None,
-    color_image=None, color_variation=0.15, threads=None, budget_bytes=None,
-    measure_clearance=false
-))]
+impl AnySurface {
+    fn from_py(surface: &Bound<'_, PyAny>) -> PyResult<Self> {
+        if let Ok(g) = surface.cast::<PyGridSurface>() {
+            Ok(AnySurface::Grid(g.get().inner.clone()))
+        } else if let Ok(m) = surface.cast::<PyMeshSurface>() {
+            Ok(AnySurface::Mesh(m.get().inner.clone()))
+        } else {
+            Err(SurfaceError::new_err(format!(
+                "surface must be a knitwear.GridSurface or knitwear.MeshSurface, not {}",
+                surface.get_type()
+            )))
+        }
+    }
+
+    fn as_dyn(&self) -> &dyn Surface {
+        match self {
+            AnySurface::Grid(g) => g.as_ref(),
+            AnySurface::Mesh(m) => m.as_ref(),
+        }
+    }
+}
+
+/// The keyword settings shared by `knit` and `Knit`, checked and turned into core params.
 #[allow(clippy::too_many_arguments)]
-fn knit(
-    py: Python<'_>,
-    surface: &Bound<'_, PyAny>,
-    pattern: &Bound<'_, PyPattern>,
+fn params_from(
     courses: Option<i64>,
     wales: Option<i64>,
     gauge: Option<(f32, f32)>,
     yarn_radius: Option<f32>,
+    stitch_size: Option<(f32, f32)>,
     fluffiness: f32,
     ring_segments: i64,
     samples_per_loop: i64,
@@ -477,17 +491,7 @@ fn knit(
     threads: Option<i64>,
     budget_bytes: Option<u64>,
     measure_clearance: bool,
-) -> PyResult<PyKnitResult> {
-    let surf = if let Ok(g) = surface.cast::<PyGridSurface>() {
-        AnySurface::Grid(g.get().inner.clone())
-    } else if let Ok(m) = surface.cast::<PyMeshSurface>() {
-        AnySurface::Mesh(m.get().inner.clone())
-    } else {
-        return Err(SurfaceError::new_err(format!(
-            "surface must be a knitwear.GridSurface or knitwear.MeshSurface, not {}",
-            surface.get_type()
-        )));
-    };
+) -> PyResult<KnitParams> {
     let count = |name: &str, v: Option<i64>| -> PyResult<Option<usize>> {
         match v {
             None => Ok(None),
@@ -543,13 +547,217 @@ fn knit(
         },
         budget_bytes: budget_bytes.unwrap_or(crate::budget::DEFAULT_BUDGET_BYTES),
         measure_clearance,
+        stitch_size,
     };
+    Ok(params)
+}
+
+/// Knits `pattern` over `surface`. See the README for every argument.
+#[pyfunction]
+#[pyo3(signature = (
+    surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
+    stitch_size=None, fluffiness=0.5, ring_segments=6, samples_per_loop=16, tension=0.0,
+    seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
+    budget_bytes=None, measure_clearance=false
+))]
+#[allow(clippy::too_many_arguments)]
+fn knit(
+    py: Python<'_>,
+    surface: &Bound<'_, PyAny>,
+    pattern: &Bound<'_, PyPattern>,
+    courses: Option<i64>,
+    wales: Option<i64>,
+    gauge: Option<(f32, f32)>,
+    yarn_radius: Option<f32>,
+    stitch_size: Option<(f32, f32)>,
+    fluffiness: f32,
+    ring_segments: i64,
+    samples_per_loop: i64,
+    tension: f32,
+    seed: u64,
+    colors: Option<&Bound<'_, PyColorPattern>>,
+    color_image: Option<&Bound<'_, PyAny>>,
+    color_variation: f32,
+    threads: Option<i64>,
+    budget_bytes: Option<u64>,
+    measure_clearance: bool,
+) -> PyResult<PyKnitResult> {
+    let surf = AnySurface::from_py(surface)?;
+    let params = params_from(
+        courses,
+        wales,
+        gauge,
+        yarn_radius,
+        stitch_size,
+        fluffiness,
+        ring_segments,
+        samples_per_loop,
+        tension,
+        seed,
+        colors,
+        color_image,
+        color_variation,
+        threads,
+        budget_bytes,
+        measure_clearance,
+    )?;
     let pattern = pattern.get().inner.clone();
-    let out = guarded(py, move || match &surf {
-        AnySurface::Grid(g) => core_knit(g.as_ref(), &pattern, &params),
-        AnySurface::Mesh(m) => core_knit(m.as_ref(), &pattern, &params),
-    })?;
+    let out = guarded(py, move || core_knit(surf.as_dyn(), &pattern, &params))?;
     to_result(py, out)
+}
+
+/// A knit bound to its surface's (u,v) layout: counts, yarn radius, stitch size, offsets,
+/// lattice and buffer layout fixed once, so that `build` and `positions` give the same
+/// topology for the surface in any pose (an animated, deformed source).
+#[pyclass(name = "Knit", module = "knitwear", frozen)]
+pub struct PyKnit {
+    inner: Arc<PreparedKnit>,
+}
+
+#[pymethods]
+impl PyKnit {
+    #[new]
+    #[pyo3(signature = (
+        surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
+        stitch_size=None, fluffiness=0.5, ring_segments=6, samples_per_loop=16, tension=0.0,
+        seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
+        budget_bytes=None, measure_clearance=false
+    ))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        surface: &Bound<'_, PyAny>,
+        pattern: &Bound<'_, PyPattern>,
+        courses: Option<i64>,
+        wales: Option<i64>,
+        gauge: Option<(f32, f32)>,
+        yarn_radius: Option<f32>,
+        stitch_size: Option<(f32, f32)>,
+        fluffiness: f32,
+        ring_segments: i64,
+        samples_per_loop: i64,
+        tension: f32,
+        seed: u64,
+        colors: Option<&Bound<'_, PyColorPattern>>,
+        color_image: Option<&Bound<'_, PyAny>>,
+        color_variation: f32,
+        threads: Option<i64>,
+        budget_bytes: Option<u64>,
+        measure_clearance: bool,
+    ) -> PyResult<Self> {
+        let surf = AnySurface::from_py(surface)?;
+        let params = params_from(
+            courses,
+            wales,
+            gauge,
+            yarn_radius,
+            stitch_size,
+            fluffiness,
+            ring_segments,
+            samples_per_loop,
+            tension,
+            seed,
+            colors,
+            color_image,
+            color_variation,
+            threads,
+            budget_bytes,
+            measure_clearance,
+        )?;
+        let pattern = pattern.get().inner.clone();
+        let inner = guarded(py, move || {
+            PreparedKnit::new(surf.as_dyn(), &pattern, &params)
+        })?;
+        Ok(Self {
+            inner: Arc::new(inner),
+        })
+    }
+
+    /// The whole result for `surface` (the one knitted, or it deformed).
+    fn build(&self, py: Python<'_>, surface: &Bound<'_, PyAny>) -> PyResult<PyKnitResult> {
+        let surf = AnySurface::from_py(surface)?;
+        let knit = self.inner.clone();
+        let out = guarded(py, move || knit.build(surf.as_dyn()))?;
+        to_result(py, out)
+    }
+
+    /// Vertex positions only, `(V, 3)` float32, for `surface` in a new pose: bit-identical
+    /// to `build(surface).vertices`. With `out` (a writable C-contiguous float32 `(V, 3)`
+    /// array) they are written there and `out` is returned: no allocation per frame.
+    #[pyo3(signature = (surface, out=None))]
+    fn positions(
+        &self,
+        py: Python<'_>,
+        surface: &Bound<'_, PyAny>,
+        out: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        let surf = AnySurface::from_py(surface)?;
+        let knit = self.inner.clone();
+        let nv = knit.vertex_count();
+        match out {
+            None => {
+                let mut buf = crate::output_buffer::zeroed::<f32>(3 * nv);
+                let buf = guarded(py, move || {
+                    knit.positions_into(surf.as_dyn(), &mut buf).map(|_| buf)
+                })?;
+                rows(py, buf, 3)
+            }
+            Some(obj) => {
+                let arr = obj.cast::<PyArrayDyn<f32>>().map_err(|_| {
+                    ParameterError::new_err("out must be a float32 numpy array of shape (V, 3)")
+                })?;
+                if arr.shape() != [nv, 3] {
+                    return Err(ParameterError::new_err(format!(
+                        "out must have shape ({nv}, 3), not {:?}",
+                        arr.shape()
+                    )));
+                }
+                let mut rw = arr.try_readwrite().map_err(|_| {
+                    ParameterError::new_err("out must be writable and not borrowed elsewhere")
+                })?;
+                let slice = rw
+                    .as_slice_mut()
+                    .map_err(|_| ParameterError::new_err("out must be C-contiguous"))?;
+                if !arr.is_c_contiguous() {
+                    return Err(ParameterError::new_err("out must be C-contiguous"));
+                }
+                guarded(py, move || knit.positions_into(surf.as_dyn(), slice))?;
+                Ok(obj.clone().unbind())
+            }
+        }
+    }
+
+    /// Vertices of every build.
+    #[getter]
+    fn vertex_count(&self) -> usize {
+        self.inner.vertex_count()
+    }
+
+    /// The yarn radius, scene units.
+    #[getter]
+    fn yarn_radius(&self) -> f32 {
+        self.inner.yarn_radius()
+    }
+
+    /// `(courses, wales)`.
+    #[getter]
+    fn counts(&self) -> (usize, usize) {
+        let s = self.inner.stats();
+        (s.courses, s.wales)
+    }
+
+    /// `(width, height)` of a stitch that the loop shapes are tuned for, scene units.
+    #[getter]
+    fn stitch_size(&self) -> (f32, f32) {
+        let s = self.inner.stats();
+        (s.stitch_width, s.stitch_height)
+    }
+
+    /// Equal keys mean identical triangles, edges and corner edges (see `KnitResult.stats`).
+    #[getter]
+    fn topology_key(&self) -> u64 {
+        self.inner.stats().topology_key
+    }
 }
 
 /// Clearance of a knit result: `(min, p01)` in yarn diameters (DESIGN.md section 7).
@@ -606,6 +814,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyPattern>()?;
     m.add_class::<PyColorPattern>()?;
     m.add_class::<PyKnitResult>()?;
+    m.add_class::<PyKnit>()?;
     m.add_function(wrap_pyfunction!(knit, m)?)?;
     m.add_function(wrap_pyfunction!(measure_clearance, m)?)?;
     m.add_function(wrap_pyfunction!(_force_internal_error, m)?)?;

@@ -1,0 +1,100 @@
+"""`knitwear.Knit`: a knit bound once to its surface, following it in new poses."""
+
+from __future__ import annotations
+
+import knitwear
+import numpy as np
+import pytest
+
+
+def bent_sheet(bend: float = 0.0, shift: float = 0.0) -> knitwear.GridSurface:
+    u, v = np.meshgrid(np.linspace(0, 1, 33), np.linspace(0, 1, 25))
+    if bend == 0.0:
+        pos = np.stack([0.1 * u, 0.08 * v, np.zeros_like(u)], axis=-1)
+        nrm = np.broadcast_to(np.array([0.0, 0.0, 1.0]), pos.shape)
+    else:
+        r, a = 0.1 / bend, (u - 0.5) * bend
+        pos = np.stack([r * np.sin(a), 0.08 * v, r * np.cos(a) - r], axis=-1)
+        nrm = np.stack([np.sin(a), np.zeros_like(a), np.cos(a)], axis=-1)
+    pos = pos + np.array([shift, 0.0, 0.0])
+    return knitwear.GridSurface(
+        np.ascontiguousarray(pos, dtype=np.float32), np.ascontiguousarray(nrm, dtype=np.float32)
+    )
+
+
+SETTINGS = {"courses": 8, "wales": 10, "ring_segments": 4, "samples_per_loop": 8, "seed": 5}
+
+
+def test_build_at_rest_is_knit() -> None:
+    pattern = knitwear.Pattern.preset("seed")
+    bound = knitwear.Knit(bent_sheet(), pattern, **SETTINGS)
+    once = knitwear.knit(bent_sheet(), pattern, **SETTINGS)
+    built = bound.build(bent_sheet())
+    for name in ("vertices", "triangles", "edges", "corner_edges", "colors"):
+        np.testing.assert_array_equal(getattr(built, name), getattr(once, name))
+    assert bound.vertex_count == len(once.vertices)
+    assert bound.counts == (8, 10)
+    assert bound.topology_key == once.stats["topology_key"]
+    assert bound.yarn_radius == pytest.approx(once.yarn_radius)
+
+
+def test_positions_follow_a_new_pose_bit_for_bit() -> None:
+    bound = knitwear.Knit(bent_sheet(), knitwear.Pattern.preset("stockinette"), **SETTINGS)
+    pose = bent_sheet(bend=1.3, shift=0.5)
+    full = bound.build(pose)
+    fresh = bound.positions(pose)
+    assert fresh.dtype == np.float32 and fresh.shape == (bound.vertex_count, 3)
+    np.testing.assert_array_equal(fresh, full.vertices)
+
+    out = np.empty((bound.vertex_count, 3), np.float32)
+    assert bound.positions(pose, out=out) is out
+    np.testing.assert_array_equal(out, full.vertices)
+    np.testing.assert_array_equal(full.triangles, bound.build(bent_sheet()).triangles)
+
+
+def test_pinned_stitch_size_reproduces_the_bound_knit_from_any_pose() -> None:
+    pattern = knitwear.Pattern.preset("rib_1x1")
+    bound = knitwear.Knit(bent_sheet(), pattern, **SETTINGS)
+    pose = bent_sheet(bend=2.0)
+    alone = knitwear.Knit(
+        pose, pattern, **SETTINGS, yarn_radius=bound.yarn_radius, stitch_size=bound.stitch_size
+    )
+    np.testing.assert_array_equal(alone.positions(pose), bound.positions(pose))
+
+
+@pytest.mark.parametrize(
+    "out",
+    [
+        np.empty((3, 3), np.float32),
+        "not an array",
+        np.empty((1, 3), np.float64),
+    ],
+)
+def test_bad_out_buffers_are_refused(out: object) -> None:
+    bound = knitwear.Knit(bent_sheet(), knitwear.Pattern.preset("stockinette"), **SETTINGS)
+    with pytest.raises(knitwear.ParameterError):
+        bound.positions(bent_sheet(), out=out)
+
+
+def test_read_only_and_fortran_out_buffers_are_refused() -> None:
+    bound = knitwear.Knit(bent_sheet(), knitwear.Pattern.preset("stockinette"), **SETTINGS)
+    frozen = np.empty((bound.vertex_count, 3), np.float32)
+    frozen.flags.writeable = False
+    with pytest.raises(knitwear.ParameterError):
+        bound.positions(bent_sheet(), out=frozen)
+    fortran = np.asfortranarray(np.empty((bound.vertex_count, 3), np.float32))
+    with pytest.raises(knitwear.ParameterError):
+        bound.positions(bent_sheet(), out=fortran)
+
+
+def test_a_surface_with_another_layout_is_a_surface_error() -> None:
+    bound = knitwear.Knit(bent_sheet(), knitwear.Pattern.preset("stockinette"), **SETTINGS)
+    pos = np.zeros((3, 3), np.float32)
+    pos[1, 0] = pos[2, 1] = 1.0
+    nrm = np.tile(np.array([0, 0, 1], np.float32), (3, 1))
+    uvs = np.array([[[0, 0], [0.5, 0], [0, 0.5]]], np.float32)
+    mesh = knitwear.MeshSurface(pos, nrm, np.array([[0, 1, 2]], np.int32), uvs)
+    with pytest.raises(knitwear.SurfaceError):
+        bound.build(mesh)
+    with pytest.raises(knitwear.SurfaceError):
+        bound.positions(mesh)
