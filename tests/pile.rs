@@ -340,6 +340,7 @@ fn check_topology(b: &PileBuffers, counts: &SliceCounts) {
 
 #[test]
 fn counts_match_the_closed_forms() {
+    let mut keys = HashSet::new();
     for (ppst, slices) in [(1, 8), (4, 3), (3, 1)] {
         let mut p = params(12, 9);
         p.piles_per_stitch = ppst;
@@ -348,6 +349,7 @@ fn counts_match_the_closed_forms() {
         let counts = SliceCounts::of((12 * 9 * ppst) as u64, slices as u64);
         assert_eq!(out.field.counts(), counts);
         check_topology(&out.buffers, &counts);
+        assert!(keys.insert(out.buffers.stats.topology_key));
         // Root darker than tip.
         let c = &out.buffers.colors;
         assert!(slices == 1 || c[0] < c[16 * (slices - 1)]);

@@ -28,10 +28,15 @@ from ._core import (
     ParameterError,
     Pattern,
     PatternError,
+    PlushField,
+    PlushResult,
+    PlushView,
     SurfaceError,
     __version__,
+    fractal_noise,
     knit,
     measure_clearance,
+    plush,
 )
 
 __all__ = [
@@ -46,8 +51,13 @@ __all__ = [
     "ParameterError",
     "Pattern",
     "PatternError",
+    "PlushField",
+    "PlushResult",
+    "PlushView",
     "SurfaceError",
     "__version__",
+    "fractal_noise",
     "knit",
     "measure_clearance",
+    "plush",
 ]

@@ -169,3 +169,116 @@ class Knit:
 def measure_clearance(result: KnitResult) -> tuple[float, float]:
     """(min, 1st percentile) centreline clearance in yarn diameters."""
 
+# Plush (warp-knit pile). Lengths in scene units, angles in radians; positions, `eye` and
+# `view_dir` in the surface's object space. The fabric frame: x along the course (u), y along
+# the wale (v), z the surface normal.
+
+class PlushView:
+    """The view-dependent buffers of a plush for one view (topology, UVs and colours are
+    the `PlushResult`'s and never change with the view)."""
+
+    vertices: npt.NDArray[np.float32]  # (V, 3)
+    mask: npt.NDArray[np.float32]  # (V,) 0 round mask (horizontal slice), 1 rectangle
+    horizontal: npt.NDArray[np.uint8]  # (P,) 1 where the pile has horizontal slices
+    stats: dict[str, Any]  # horizontal, vertical, seconds
+
+class PlushField:
+    """Pile roots, frames, directions and colours sampled once; re-viewed cheaply."""
+
+    def view(
+        self,
+        *,
+        eye: Sequence[float] | None = None,
+        view_dir: Sequence[float] | None = None,
+        threads: int | None = None,
+    ) -> PlushView:
+        """Slice choice and positions for a new view: no surface sampling, no noise."""
+    def build(
+        self,
+        *,
+        eye: Sequence[float] | None = None,
+        view_dir: Sequence[float] | None = None,
+        threads: int | None = None,
+        budget_bytes: int | None = None,
+    ) -> PlushResult:
+        """Every buffer for a view, as `plush()` returns them."""
+    @property
+    def piles(self) -> int: ...
+    @property
+    def slices(self) -> int: ...
+    @property
+    def pile_length(self) -> float: ...
+    @property
+    def pile_radius(self) -> float: ...
+    @property
+    def stats(self) -> dict[str, Any]: ...
+    @property
+    def roots(self) -> npt.NDArray[np.float32]:
+        """(P, 3) pile roots."""
+    @property
+    def directions(self) -> npt.NDArray[np.float32]:
+        """(P, 3) unit pile directions."""
+    @property
+    def normals(self) -> npt.NDArray[np.float32]:
+        """(P, 3) unit surface normals at the roots."""
+    @property
+    def root_uvs(self) -> npt.NDArray[np.float32]:
+        """(P, 2) (u,v) of the roots."""
+    @property
+    def noise(self) -> npt.NDArray[np.float32]:
+        """(H, W, 3) fractal noise unit vectors in the noise frame (z = nominal direction)."""
+    @property
+    def noise_rgb(self) -> npt.NDArray[np.float32]:
+        """(H, W, 3) the noise as the paper's image, (v + 1) / 2 in [0, 1]."""
+
+class PlushResult:
+    vertices: npt.NDArray[np.float32]  # (V, 3), V = 4 * slices * piles
+    triangles: npt.NDArray[np.int32]  # (T, 3), two per slice quad
+    edges: npt.NDArray[np.int32]  # (E, 2), five per quad, every edge once
+    corner_edges: npt.NDArray[np.int32]  # (3T,), edge from corner k to the next in its face
+    colors: npt.NDArray[np.float32]  # (V, 4) linear RGBA, darker at the root
+    uvs: npt.NDArray[np.float32]  # (V, 2), each quad (0,0), (1,0), (1,1), (0,1)
+    mask: npt.NDArray[np.float32]  # (V,) 0 round mask (horizontal slice), 1 rectangle
+    horizontal: npt.NDArray[np.uint8]  # (P,) 1 where the pile has horizontal slices
+    stats: dict[str, Any]
+    field: PlushField
+
+def plush(
+    surface: GridSurface | MeshSurface,
+    *,
+    courses: int | None = None,
+    wales: int | None = None,
+    gauge: tuple[float, float] | None = None,
+    piles_per_stitch: int = 1,
+    pile_length: float | None = None,
+    pile_radius: float | None = None,
+    slices: int = 8,
+    lean: Sequence[float] | None = None,
+    theta_max: float | None = None,
+    noise_scales: Sequence[int] | None = None,
+    noise_size: tuple[int, int] | None = None,
+    seed: int = 0,
+    eye: Sequence[float] | None = None,
+    view_dir: Sequence[float] | None = None,
+    colors: ColorPattern | Sequence[float] | npt.NDArray[np.float32] | None = None,
+    color_image: npt.NDArray[np.float32] | None = None,
+    press: npt.NDArray[np.float32] | None = None,
+    press_strength: float | None = None,
+    press_direction: float | None = None,
+    threads: int | None = None,
+    budget_bytes: int | None = None,
+) -> PlushResult:
+    """Warp-knit plush over `surface`: fractal-noise pile directions, and per pile
+    horizontal or vertical slices for the view (see the README's Plush section)."""
+
+def fractal_noise(
+    size: int | tuple[int, int],
+    *,
+    theta_max: float | None = None,
+    scales: Sequence[int] | None = None,
+    seed: int = 0,
+    rgb: bool = False,
+    threads: int | None = None,
+) -> npt.NDArray[np.float32]:
+    """(height, width, 3) float32 fractal noise unit vectors (or with rgb=True the image
+    (v + 1) / 2); size is an int or (width, height); scales=(1,) gives the base noise."""

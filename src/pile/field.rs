@@ -18,6 +18,7 @@ use super::{
     MAX_STITCHES_PER_DIRECTION,
 };
 use crate::error::{KnitError, Result};
+use crate::output_buffer::zeroed;
 use crate::parallel::run_in_pool;
 use crate::surface::Surface;
 
@@ -47,6 +48,10 @@ pub struct PileStats {
     pub stitch_height: f32,
     pub noise_width: usize,
     pub noise_height: usize,
+    /// Equal keys mean identical triangles, edges, corner edges, UVs and buffer sizes: a mesh
+    /// built for one key needs only new positions (and mask) for another view or build. A
+    /// function of the pile count and the slices per pile, never of a view.
+    pub topology_key: u64,
     /// Seconds in the core: the field and the buffers for [`plush`]; the buffers alone for
     /// [`PileField::build`]; the view alone for [`PileField::update`] and [`PileField::view`].
     pub seconds: f64,
@@ -404,13 +409,13 @@ impl PileField {
             counts.edges as usize,
         );
         let mut out = PileBuffers {
-            positions: vec![0.0; 3 * nv],
-            triangles: vec![0; 3 * nt],
-            edges: vec![0; 2 * ne],
-            corner_edges: vec![0; 3 * nt],
-            colors: vec![0.0; 4 * nv],
-            uvs: vec![0.0; 2 * nv],
-            mask: vec![0.0; nv],
+            positions: zeroed(3 * nv),
+            triangles: zeroed(3 * nt),
+            edges: zeroed(2 * ne),
+            corner_edges: zeroed(3 * nt),
+            colors: zeroed(4 * nv),
+            uvs: zeroed(2 * nv),
+            mask: zeroed(nv),
             horizontal: vec![0; self.piles.len()],
             stats: self.stats.clone(),
         };
@@ -451,6 +456,7 @@ impl PileField {
         out.stats.vertical = v;
         out.stats.vertices = nv;
         out.stats.triangles = nt;
+        out.stats.topology_key = topology_key(self.piles.len(), s);
         out.stats.seconds = start.elapsed().as_secs_f64();
         Ok(out)
     }
@@ -488,8 +494,8 @@ impl PileField {
         view.validate()?;
         let nv = self.counts().vertices as usize;
         let mut out = PileView {
-            positions: vec![0.0; 3 * nv],
-            mask: vec![0.0; nv],
+            positions: zeroed(3 * nv),
+            mask: zeroed(nv),
             horizontal: vec![0; self.piles.len()],
             ..Default::default()
         };
@@ -533,6 +539,13 @@ impl PileField {
         })?;
         Ok((n_h, self.piles.len() - n_h))
     }
+}
+
+/// See [`PileStats::topology_key`]: the project's SplitMix64 mix of the two numbers that fix
+/// the layout, salted apart from the knit's keys.
+fn topology_key(piles: usize, slices: usize) -> u64 {
+    let h = crate::pile::fractal_noise::texel_seed(0x706c_7573_685f_6b65, piles, slices);
+    h ^ 0x5049_4c45 // "PILE"
 }
 
 /// Samples `surface` into a [`PileField`] and builds its buffers for `view`.

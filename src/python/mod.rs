@@ -12,6 +12,7 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+mod pile;
 
 use crate::error::KnitError;
 use crate::knit::{knit as core_knit, ColorImage, KnitOutput, KnitParams, PreparedKnit};
@@ -818,5 +819,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(knit, m)?)?;
     m.add_function(wrap_pyfunction!(measure_clearance, m)?)?;
     m.add_function(wrap_pyfunction!(_force_internal_error, m)?)?;
+    pile::register(m)?;
     Ok(())
 }
