@@ -7,16 +7,25 @@
 //! neighbour `n4`) and `c in 0..=wales`. In a cyclic direction the last node column (row) is
 //! the first one moved by one domain period, so coordinates may leave the domain: the
 //! surface wraps them.
+//!
+//! [`Lattice::perturbed`] moves every node by the recursive random perturbation of section
+//! 2.4 ([`perturbation`]): tiles become general convex quadrilaterals that never fold.
 
-use glam::Vec2;
+pub mod perturbation;
 
+use glam::{DVec2, Vec2};
+use rayon::prelude::*;
+
+use crate::error::Result;
 use crate::surface::UvRect;
+
+pub use perturbation::{Perturbation, KAPPA_MAX};
 
 /// How far, in rows, the sinker dips below a tile (k0) and the head reaches above it (k3).
 /// The lattice is inset by this much on a non-cyclic v so every key point lies on the surface.
 pub const ROW_OVERHANG: f32 = 0.35;
 
-/// Tile corners in (u,v), regular: the elastic rest position of the fabric.
+/// Tile corners in (u,v): regular (the elastic rest position of the fabric), or perturbed.
 #[derive(Debug, Clone)]
 pub struct Lattice {
     pub courses: usize,
@@ -28,6 +37,8 @@ pub struct Lattice {
     origin: Vec2,
     /// Row-major `(courses + 2) x (wales + 1)` node positions.
     nodes: Vec<Vec2>,
+    /// Whether the nodes were moved off the regular grid (then tile centres are corner means).
+    perturbed: bool,
 }
 
 /// The four corners of a tile and the northern neighbour of its top-left corner, named as in
@@ -85,7 +96,69 @@ impl Lattice {
             tile,
             origin,
             nodes,
+            perturbed: false,
         }
+    }
+
+    /// The regular lattice with every node moved by the recursive random perturbation of
+    /// strength `kappa` (seed 000, section 2.4): node `(r, c)` is
+    /// `origin + tile * ((c, r) + D(r, c))` with `D` the [`Perturbation`] field in tile units.
+    ///
+    /// - `kappa = 0` gives exactly [`Lattice::regular`].
+    /// - Every tile stays a convex, positively oriented quadrilateral keeping at least
+    ///   `1 - 40 * kappa` of its area, for every seed: by construction, see [`perturbation`].
+    /// - Nodes on a non-cyclic side (columns 0 and `wales`, rows 0 and `courses + 1`) keep
+    ///   that side's coordinate, bit for bit, so the lattice's outline stays the domain's.
+    ///   Key points that extrapolate past a tile along v (the first course's sinkers, 0.35 of
+    ///   a row below row 0; the last course's heads, 0.35 of a row above row `courses`) can
+    ///   leave a non-cyclic v side by at most `0.35 * 12 kappa` resp. `0.65 * 12 kappa` of a
+    ///   row (0.084 and 0.156 at [`KAPPA_MAX`]), because row 1 and row `courses` move in v;
+    ///   across u they stay inside.
+    /// - Along a non-cyclic direction the field is local: adding rows or columns at the far
+    ///   edge leaves nodes [`perturbation::LOCALITY_RADIUS`] (32) or more tiles away from it
+    ///   unchanged, bit for bit. Along a cyclic direction it has the period exactly.
+    /// - The result depends only on the arguments: not on the machine or the thread count.
+    ///
+    /// Errors: [`crate::error::KnitError::Parameter`] for kappa outside `[0, KAPPA_MAX]` or
+    /// not finite.
+    pub fn perturbed(
+        domain: UvRect,
+        courses: usize,
+        wales: usize,
+        cyclic_u: bool,
+        cyclic_v: bool,
+        kappa: f32,
+        seed: u64,
+    ) -> Result<Self> {
+        perturbation::check_kappa(kappa)?;
+        let mut lattice = Self::regular(domain, courses, wales, cyclic_u, cyclic_v);
+        if kappa == 0.0 || courses == 0 || wales == 0 {
+            return Ok(lattice);
+        }
+        let field = Perturbation::new(courses, wales, cyclic_u, cyclic_v, kappa, seed)?;
+        let origin = lattice.origin.as_dvec2();
+        let tile = lattice.tile.as_dvec2();
+        lattice
+            .nodes
+            .par_chunks_mut(wales + 1)
+            .enumerate()
+            .for_each(|(r, row)| {
+                for (c, node) in row.iter_mut().enumerate() {
+                    let d = field.displacement(r, c);
+                    let moved =
+                        (origin + tile * DVec2::new(c as f64 + d[0], r as f64 + d[1])).as_vec2();
+                    // A component that does not move keeps the regular lattice's bits
+                    // (boundary sides stay exactly on the domain's edge).
+                    if d[0] != 0.0 {
+                        node.x = moved.x;
+                    }
+                    if d[1] != 0.0 {
+                        node.y = moved.y;
+                    }
+                }
+            });
+        lattice.perturbed = true;
+        Ok(lattice)
     }
 
     /// Node `(r, c)`, `r <= courses + 1`, `c <= wales`.
@@ -104,8 +177,14 @@ impl Lattice {
         }
     }
 
-    /// The (u,v) of the centre of a tile (for colour images sampled per stitch).
+    /// The (u,v) of the centre of a tile, the mean of its four corners (for colour images
+    /// sampled per stitch). On a regular lattice: `origin + tile * (wale + 1/2, course + 1/2)`.
     pub fn tile_center(&self, course: usize, wale: usize) -> Vec2 {
-        self.origin + self.tile * Vec2::new(wale as f32 + 0.5, course as f32 + 0.5)
+        if self.perturbed {
+            let t = self.tile(course, wale);
+            (t.n0 + t.n1 + t.n2 + t.n3) * 0.25
+        } else {
+            self.origin + self.tile * Vec2::new(wale as f32 + 0.5, course as f32 + 0.5)
+        }
     }
 }
