@@ -7,7 +7,7 @@ package this extension bundles as a wheel.
 
 import bpy
 
-from . import operators, panels, properties
+from . import follow, operators, panels, properties
 
 _CLASSES: tuple[type, ...] = (
     operators.OBJECT_OT_knitwear_knit,
@@ -22,9 +22,11 @@ def register() -> None:
     for cls in _CLASSES:
         bpy.utils.register_class(cls)
     bpy.types.VIEW3D_MT_object.append(operators.draw_object_menu)
+    follow.register()
 
 
 def unregister() -> None:
+    follow.unregister()
     bpy.types.VIEW3D_MT_object.remove(operators.draw_object_menu)
     for cls in reversed(_CLASSES):
         bpy.utils.unregister_class(cls)

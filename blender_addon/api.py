@@ -24,7 +24,7 @@ import bpy
 import knitwear
 import numpy as np
 
-from . import material, mesh_build, sampling
+from . import material, mesh_build, sampling, source_link
 from .properties import (
     CUSTOM_PATTERN,
     FLOAT_SETTINGS,
@@ -158,36 +158,58 @@ def _size(settings: Mapping[str, Any], scene: bpy.types.Scene) -> dict[str, Any]
     raise knitwear.ParameterError(f"unknown size_mode {mode!r}; expected GAUGE or COUNTS")
 
 
-def _sample(
+def _min_samples(
     source: bpy.types.Object,
     context: bpy.types.Context,
     settings: Mapping[str, Any],
     size: Mapping[str, Any],
-) -> sampling.Sampled:
-    """Sample the source densely enough for the stitch count it will get."""
-    direction = settings["direction"]
+) -> tuple[int, int] | None:
+    """Grid samples (along the courses, along the wales) a NURBS source is tessellated with:
+    enough for the stitch count it will get. None for a mesh, which is used as it is."""
+    if source.type == "MESH":
+        return None
     if "gauge" in size:
         # The stitch count follows from the surface's size: measure it on Blender's own
         # tessellation first (cheap), then sample densely.
-        probe = sampling.sample_object(source, context, direction=direction)
+        probe = sampling.sample_object(source, context, direction=settings["direction"])
         if probe.grid_shape is None:
-            return probe  # a mesh is used as it is
+            return None  # modifiers made it a mesh: used as it is
         extent_u, extent_v = probe.surface.extent
         wales = extent_u * size["gauge"][0] / _GAUGE_LENGTH
         courses = extent_v * size["gauge"][1] / _GAUGE_LENGTH
     else:
-        if source.type == "MESH":
-            return sampling.sample_object(source, context, direction=direction)
         wales, courses = size["wales"], size["courses"]
     per = sampling.SAMPLES_PER_STITCH
     # Capped so an absurd count reaches the core's budget check instead of a huge grid.
-    min_samples = (
-        int(min(wales, 1e7) * per) + 1,
-        int(min(courses, 1e7) * per) + 1,
-    )
-    return sampling.sample_object(
-        source, context, direction=direction, min_samples=min_samples
-    )
+    return (int(min(wales, 1e7) * per) + 1, int(min(courses, 1e7) * per) + 1)
+
+
+def core_settings(settings: Mapping[str, Any], scene: bpy.types.Scene) -> dict[str, Any]:
+    """`knitwear.knit` / `knitwear.Knit` keywords for ``settings`` (all but the pinned ones)."""
+    radius = float(settings["yarn_radius"])
+    return {
+        **_size(settings, scene),
+        **_colors(settings),
+        "yarn_radius": radius if radius > 0 else None,
+        "fluffiness": float(settings["fluffiness"]),
+        "ring_segments": int(settings["ring_segments"]),
+        "samples_per_loop": int(settings["samples_per_loop"]),
+        "tension": float(settings["tension"]),
+        "seed": int(settings["seed"]),
+        "color_variation": float(settings["color_variation"]),
+        "threads": scene.render.threads,
+    }
+
+
+@dataclass(frozen=True)
+class Bound:
+    """What a knit pins at bind time so that any later pose rebuilds the same topology."""
+
+    counts: tuple[int, int]
+    yarn_radius: float
+    stitch_size: tuple[float, float]
+    #: Grid samples the NURBS source was tessellated with, or (0, 0) for a mesh.
+    samples: tuple[int, int]
 
 
 def _run_core(
@@ -195,44 +217,40 @@ def _run_core(
     context: bpy.types.Context,
     settings: Mapping[str, Any],
     progress: Progress | None,
-) -> tuple[sampling.Sampled, Any, float]:
+) -> tuple[sampling.Sampled, Any, Bound, float]:
     """Everything that can fail, before any datablock is created."""
-    scene = context.scene
     pattern = _pattern(settings)
-    colors = _colors(settings)
-    size = _size(settings, scene)
+    kwargs = core_settings(settings, context.scene)
+    size = {k: kwargs[k] for k in ("gauge", "courses", "wales") if k in kwargs}
     if progress:
         progress(0.05)
-    sampled = _sample(source, context, settings, size)
+    min_samples = _min_samples(source, context, settings, size)
+    sampled = sampling.sample_object(
+        source, context, direction=settings["direction"], min_samples=min_samples
+    )
     if progress:
         progress(0.2)
-    radius = float(settings["yarn_radius"])
     t0 = time.perf_counter()
-    result = knitwear.knit(
-        sampled.surface,
-        pattern,
-        **size,
-        yarn_radius=radius if radius > 0 else None,
-        fluffiness=float(settings["fluffiness"]),
-        ring_segments=int(settings["ring_segments"]),
-        samples_per_loop=int(settings["samples_per_loop"]),
-        tension=float(settings["tension"]),
-        seed=int(settings["seed"]),
-        color_variation=float(settings["color_variation"]),
-        threads=scene.render.threads,
-        **colors,
-    )
+    knit = knitwear.Knit(sampled.surface, pattern, **kwargs)
+    result = knit.build(sampled.surface)
     core_seconds = time.perf_counter() - t0
+    bound = Bound(knit.counts, knit.yarn_radius, knit.stitch_size, min_samples or (0, 0))
     if progress:
         progress(0.8)
-    return sampled, result, core_seconds
+    return sampled, result, bound, core_seconds
 
 
-def _store(obj: bpy.types.Object, source: bpy.types.Object, settings: Mapping[str, Any]) -> None:
+def _store(
+    obj: bpy.types.Object, source: bpy.types.Object, settings: Mapping[str, Any], bound: Bound
+) -> None:
     stored = obj.knitwear
     for name, value in settings.items():
         setattr(stored, name, value)
     stored.source = source
+    stored.bound_counts = bound.counts
+    stored.bound_yarn_radius = bound.yarn_radius
+    stored.bound_stitch_size = bound.stitch_size
+    stored.bound_samples = bound.samples
     stored.is_knit = True
 
 
@@ -283,7 +301,7 @@ def knit(
     context = context or bpy.context
     settings = _complete(settings)
     source = _check_source(source, "the object")
-    sampled, result, core_s = _run_core(source, context, settings, progress)
+    sampled, result, bound, core_s = _run_core(source, context, settings, progress)
 
     t_mesh = time.perf_counter()
     name = f"{source.name}.knit"
@@ -294,7 +312,11 @@ def knit(
     obj.matrix_world = sampled.matrix
     collection = source.users_collection[0] if source.users_collection else None
     (collection or context.scene.collection).objects.link(obj)
-    _store(obj, source, settings)
+    _store(obj, source, settings, bound)
+    source_link.link_source(obj)
+    # The knit follows its source from a frame handler that writes mesh data, which Blender
+    # asks to do with the interface locked during renders.
+    context.scene.render.use_lock_interface = True
     if progress:
         progress(1.0)
     return _outcome(obj, result, t_start, core_s, mesh_s)
@@ -324,6 +346,52 @@ def knit_result(
     return _run_core(source, context, _complete(settings), None)[1]
 
 
+def bound_of(obj: bpy.types.Object) -> Bound:
+    """The values knit object ``obj`` pinned when it was knitted or last updated."""
+    stored = obj.knitwear
+    return Bound(
+        tuple(stored.bound_counts),
+        stored.bound_yarn_radius,
+        tuple(stored.bound_stitch_size),
+        tuple(stored.bound_samples),
+    )
+
+
+def bind(
+    obj: bpy.types.Object,
+    sampled: sampling.Sampled,
+    scene: bpy.types.Scene,
+) -> "knitwear.Knit":
+    """A `knitwear.Knit` for knit object ``obj`` that rebuilds exactly its mesh from its
+    source in any pose: the stored settings with counts, yarn radius and stitch size pinned
+    to the values stored at knit time (see `follow`)."""
+    settings = _complete(settings_from(obj))
+    bound = bound_of(obj)
+    kwargs = core_settings(settings, scene)
+    for key in ("gauge", "courses", "wales"):
+        kwargs.pop(key, None)
+    kwargs["courses"], kwargs["wales"] = bound.counts
+    kwargs["yarn_radius"] = bound.yarn_radius
+    kwargs["stitch_size"] = bound.stitch_size
+    return knitwear.Knit(sampled.surface, _pattern(settings), **kwargs)
+
+
+def sample_source(
+    obj: bpy.types.Object, context: bpy.types.Context, depsgraph: bpy.types.Depsgraph
+) -> sampling.Sampled:
+    """Knit object ``obj``'s source as ``depsgraph`` evaluates it now, sampled as it was at
+    knit time (same direction, same grid density)."""
+    source = _check_source(obj.knitwear.source, f"'{obj.name}'")
+    samples = bound_of(obj).samples
+    return sampling.sample_object(
+        source,
+        context,
+        direction=obj.knitwear.direction,
+        min_samples=samples if samples != (0, 0) else None,
+        depsgraph=depsgraph,
+    )
+
+
 def update(
     obj: bpy.types.Object,
     *,
@@ -342,14 +410,15 @@ def update(
         raise knitwear.ParameterError(f"'{obj.name}' is not a knit: knit a surface first")
     merged = _complete(settings_from(obj) | dict(settings))
     source = _check_source(obj.knitwear.source, f"'{obj.name}'")
-    sampled, result, core_s = _run_core(source, context, merged, progress)
+    sampled, result, bound, core_s = _run_core(source, context, merged, progress)
 
     t_mesh = time.perf_counter()
     mesh = mesh_build.fill_mesh(obj.data, result)
     mesh_s = time.perf_counter() - t_mesh
     material.assign(mesh)
     obj.matrix_world = sampled.matrix
-    _store(obj, source, merged)
+    _store(obj, source, merged, bound)
+    source_link.link_source(obj)
     if progress:
         progress(1.0)
     return _outcome(obj, result, t_start, core_s, mesh_s)

@@ -141,6 +141,13 @@ def _build(name: str, result: object) -> bpy.types.Mesh:
     return mesh
 
 
+def write_positions(mesh: bpy.types.Mesh, positions: np.ndarray) -> None:
+    """Rewrite ``mesh``'s vertex positions (same count) in one `foreach_set`: the per-frame
+    path of a knit that follows its source (about 1 ms per million vertices)."""
+    mesh.attributes["position"].data.foreach_set("vector", _f32(positions))
+    mesh.update()
+
+
 def fill_mesh(mesh: bpy.types.Mesh, result: object) -> bpy.types.Mesh:
     """Make ``mesh`` hold a `knitwear.KnitResult`; return the mesh that now does.
 
@@ -151,9 +158,8 @@ def fill_mesh(mesh: bpy.types.Mesh, result: object) -> bpy.types.Mesh:
     object that used ``mesh`` shows the result.
     """
     if _same_topology(mesh, result):
-        mesh.attributes["position"].data.foreach_set("vector", _f32(result.vertices))
         _set_colors(mesh, result.colors)
-        mesh.update()
+        write_positions(mesh, result.vertices)
         return mesh
     name = mesh.name
     new = _build(name + ".new", result)

@@ -29,6 +29,7 @@ class VIEW3D_PT_knitwear(bpy.types.Panel):
         layout.use_property_split = True
         layout.use_property_decorate = False
         layout.prop(settings, "source")
+        layout.prop(settings, "follow_source")
         draw_settings(layout, settings, "knitwear_panel")
         layout.separator()
         row = layout.row()

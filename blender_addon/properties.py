@@ -16,6 +16,7 @@ from bpy.props import (
     FloatProperty,
     FloatVectorProperty,
     IntProperty,
+    IntVectorProperty,
     PointerProperty,
     StringProperty,
 )
@@ -281,6 +282,33 @@ class KnitwearSettings(KnitSettingsMixin, bpy.types.PropertyGroup):
         description="The NURBS surface or UV-mapped mesh this knit follows",
         type=bpy.types.Object,
         poll=_poll_source,
+    )
+    follow_source: BoolProperty(
+        name="Follow Source",
+        description="On every frame, move the yarn with its source surface as it deforms "
+        "(armature, shape keys, modifiers, animated points): stitches stay bound to the "
+        "surface and the mesh topology never changes",
+        default=True,
+    )
+    # Pinned at knit time (and by Update) so that every later pose, and a farm machine that
+    # opens the file at any frame, rebuilds exactly this knit's topology and loop shapes.
+    bound_counts: IntVectorProperty(
+        name="Bound Counts", description="Courses and wales at knit time", size=2, min=0
+    )
+    bound_yarn_radius: FloatProperty(
+        name="Bound Yarn Radius", description="Yarn radius at knit time", min=0.0
+    )
+    bound_stitch_size: FloatVectorProperty(
+        name="Bound Stitch Size",
+        description="Stitch width and height measured at knit time",
+        size=2,
+        min=0.0,
+    )
+    bound_samples: IntVectorProperty(
+        name="Bound Samples",
+        description="Grid samples the NURBS source was tessellated with at knit time",
+        size=2,
+        min=0,
     )
 
 

@@ -209,8 +209,10 @@ def sample_object(
     *,
     direction: str = "AUTO",
     min_samples: tuple[int, int] | None = None,
+    depsgraph: bpy.types.Depsgraph | None = None,
 ) -> Sampled:
-    """Sample ``obj`` as evaluated in ``context``'s view layer (modifiers, shape keys...).
+    """Sample ``obj`` as evaluated in ``context``'s view layer (modifiers, shape keys...), or
+    in ``depsgraph`` where given (a frame-change handler's, which may be a render's).
 
     ``min_samples`` asks for at least that many grid samples along the courses and along the
     wales (NURBS surfaces only; a mesh is used as it is). ``direction`` is "AUTO", "U" or "V"
@@ -219,10 +221,11 @@ def sample_object(
     """
     if obj.type == "MESH":
         courses_along = _resolve_direction(direction, False, False)
-        evaluated = obj.evaluated_get(context.evaluated_depsgraph_get())
+        evaluated = obj.evaluated_get(depsgraph or context.evaluated_depsgraph_get())
         mesh = evaluated.to_mesh()
         try:
-            return _mesh_surface(obj, mesh, courses_along)
+            # The evaluated object carries this frame's transform, also in a render's depsgraph.
+            return _mesh_surface(evaluated, mesh, courses_along)
         finally:
             evaluated.to_mesh_clear()
     if obj.type != "SURFACE":

@@ -13,7 +13,7 @@ from blender_scenes import SMALL, data_counts, nurbs_patch, nurbs_sphere, snapsh
 class Spy:
     def __init__(self, core: ModuleType, monkeypatch: pytest.MonkeyPatch) -> None:
         self.calls: list[tuple[str, tuple[Any, ...], dict[str, Any]]] = []
-        for name in ("GridSurface", "MeshSurface", "knit"):
+        for name in ("GridSurface", "MeshSurface", "Knit"):
             real = getattr(core, name)
             monkeypatch.setattr(core, name, self._wrap(name, real))
 
@@ -123,7 +123,7 @@ def test_gauge_reaches_the_core_per_scene_unit(api: ModuleType, spy: Spy) -> Non
     bpy.context.view_layer.update()
     api.knit_result(source, size_mode="GAUGE", gauge_stitches=20.0, gauge_rows=28.0,
                     ring_segments=4, samples_per_loop=8)
-    _, kwargs = spy.last("knit")
+    _, kwargs = spy.last("Knit")
     # The core counts stitches per 0.1 units: 20 per 10 cm is 10 per 0.1 units of 0.5 m.
     assert kwargs["gauge"] == pytest.approx((10.0, 14.0))
     assert kwargs["threads"] == bpy.context.scene.render.threads
