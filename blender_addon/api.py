@@ -195,6 +195,7 @@ def core_settings(settings: Mapping[str, Any], scene: bpy.types.Scene) -> dict[s
         "ring_segments": int(settings["ring_segments"]),
         "samples_per_loop": int(settings["samples_per_loop"]),
         "tension": float(settings["tension"]),
+        "kappa": float(settings["kappa"]),
         "seed": int(settings["seed"]),
         "color_variation": float(settings["color_variation"]),
         "threads": scene.render.threads,

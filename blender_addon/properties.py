@@ -209,6 +209,17 @@ class KnitSettingsMixin:
         max=0.99,
         subtype="FACTOR",
     )
+    kappa: FloatProperty(
+        name="Irregularity",
+        description="How far stitches stray from a perfect grid, as hand knitting does: the "
+        "kappa of the recursive perturbation (0 = machine-regular; at most 0.02, where no "
+        "stitch can fold over)",
+        default=0.005,
+        min=0.0,
+        max=0.02,
+        step=0.05,
+        precision=4,
+    )
     seed: IntProperty(
         name="Seed",
         description="Random seed of the stitch irregularity and fibres; the same seed gives "

@@ -31,6 +31,7 @@ def _yarn(layout: bpy.types.UILayout, settings: bpy.types.AnyType) -> None:
     col.prop(settings, "ring_segments")
     col.prop(settings, "samples_per_loop")
     layout.prop(settings, "tension")
+    layout.prop(settings, "kappa")
     layout.prop(settings, "seed")
 
 

@@ -114,6 +114,9 @@ pub struct KnitParams {
     pub samples_per_loop: usize,
     /// Cardinal spline tension, 0..1 (0: Catmull-Rom). Default: 0.
     pub tension: f32,
+    /// Irregularity of stitch positions: the recursive perturbation's kappa (seed 000,
+    /// section 2.4), 0 (a regular lattice) to [`crate::lattice::KAPPA_MAX`]. Default: 0.
+    pub kappa: f32,
     pub seed: u64,
     /// Colours per stitch from a palette chart. Default: one yarn colour.
     pub colors: Option<ColorPattern>,
@@ -141,6 +144,7 @@ impl Default for KnitParams {
             ring_segments: 6,
             samples_per_loop: 16,
             tension: 0.0,
+            kappa: 0.0,
             seed: 0,
             colors: None,
             color_image: None,
@@ -376,7 +380,8 @@ impl PreparedKnit {
 
         let domain = surface.domain();
         let cyclic = (surface.cyclic_u(), cyclic_v);
-        let lattice = Lattice::regular(domain, courses, wales, cyclic.0, cyclic.1);
+        let lattice =
+            Lattice::perturbed(domain, courses, wales, cyclic.0, cyclic.1, p.kappa, p.seed)?;
         let sampling = SplineSampling {
             samples_per_loop: s,
             tension: p.tension,

@@ -413,3 +413,38 @@ fn colors_follow_the_colour_chart() {
     assert!(reds > nv / 3 && blues > nv / 3);
     let _ = PI;
 }
+
+#[test]
+fn irregularity_moves_stitches_and_keeps_the_yarn_apart() {
+    // Clearance against kappa on the sheet (the figures behind the default), and the
+    // perturbation actually moving the yarn.
+    let regular = knit(
+        &sheet(),
+        &StitchPattern::preset("stockinette").unwrap(),
+        &params(),
+    );
+    let regular = regular.unwrap();
+    for kappa in [0.0025f32, 0.005, 0.01, 0.02] {
+        for name in ["stockinette", "rib_1x1", "seed"] {
+            let p = KnitParams { kappa, ..params() };
+            let out = knit(&sheet(), &StitchPattern::preset(name).unwrap(), &p).unwrap();
+            let (min, p01) = measure(&out);
+            println!("kappa {kappa:.4} {name:12} clearance min {min:.3} p01 {p01:.3}");
+            assert!(min >= 0.95, "kappa {kappa} {name}: clearance {min}");
+            assert!(out.positions.iter().all(|x| x.is_finite()));
+            if name == "stockinette" {
+                assert_eq!(out.triangles, regular.triangles, "same topology");
+                assert_ne!(
+                    out.positions, regular.positions,
+                    "kappa {kappa} moved nothing"
+                );
+            }
+        }
+    }
+    let p = KnitParams {
+        kappa: 0.5,
+        ..params()
+    };
+    let err = knit(&sheet(), &StitchPattern::preset("seed").unwrap(), &p);
+    assert!(matches!(err, Err(KnitError::Parameter(_))));
+}

@@ -485,6 +485,7 @@ fn params_from(
     ring_segments: i64,
     samples_per_loop: i64,
     tension: f32,
+    kappa: f32,
     seed: u64,
     colors: Option<&Bound<'_, PyColorPattern>>,
     color_image: Option<&Bound<'_, PyAny>>,
@@ -538,6 +539,7 @@ fn params_from(
         ring_segments: positive("ring_segments", ring_segments)?,
         samples_per_loop: positive("samples_per_loop", samples_per_loop)?,
         tension,
+        kappa,
         seed,
         colors: colors.map(|c| c.get().inner.clone()),
         color_image: image,
@@ -558,7 +560,7 @@ fn params_from(
 #[pyo3(signature = (
     surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
     stitch_size=None, fluffiness=0.5, ring_segments=6, samples_per_loop=16, tension=0.0,
-    seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
+    kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
     budget_bytes=None, measure_clearance=false
 ))]
 #[allow(clippy::too_many_arguments)]
@@ -575,6 +577,7 @@ fn knit(
     ring_segments: i64,
     samples_per_loop: i64,
     tension: f32,
+    kappa: f32,
     seed: u64,
     colors: Option<&Bound<'_, PyColorPattern>>,
     color_image: Option<&Bound<'_, PyAny>>,
@@ -594,6 +597,7 @@ fn knit(
         ring_segments,
         samples_per_loop,
         tension,
+        kappa,
         seed,
         colors,
         color_image,
@@ -621,7 +625,7 @@ impl PyKnit {
     #[pyo3(signature = (
         surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
         stitch_size=None, fluffiness=0.5, ring_segments=6, samples_per_loop=16, tension=0.0,
-        seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
+        kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
         budget_bytes=None, measure_clearance=false
     ))]
     #[allow(clippy::too_many_arguments)]
@@ -638,6 +642,7 @@ impl PyKnit {
         ring_segments: i64,
         samples_per_loop: i64,
         tension: f32,
+        kappa: f32,
         seed: u64,
         colors: Option<&Bound<'_, PyColorPattern>>,
         color_image: Option<&Bound<'_, PyAny>>,
@@ -657,6 +662,7 @@ impl PyKnit {
             ring_segments,
             samples_per_loop,
             tension,
+            kappa,
             seed,
             colors,
             color_image,
