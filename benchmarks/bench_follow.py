@@ -1,0 +1,146 @@
+"""Per-frame cost of a knit following its animated source, against the bare cost of writing
+that many positions into a Blender mesh (measured in the same run).
+
+    .venv/bin/python benchmarks/bench_follow.py                 # 10k and 50k stitches
+    .venv/bin/python benchmarks/bench_follow.py --stitches 2500 --frames 5
+
+The source is a UV-mapped grid (1 m square) with an animated shape key (a travelling wave), the
+knit at default quality (6 ring segments, 16 samples per loop). For each stitch count it prints
+medians over --frames frame changes:
+  sample    reading the evaluated source into the core's surface (positions, normals, UVs);
+  core      `Knit.positions` into the kept buffer (the core, in parallel);
+  write     one `foreach_set` of the positions plus `Mesh.update()`;
+  frame     the whole `follow()` (what the frame handler does per knit);
+  floor     `foreach_set` of the same number of positions alone (the bare cost);
+  normals   Blender recomputing the normals afterwards, which the next draw or render pays;
+  fps       1 / frame, and 1 / (frame + normals).
+No assertions: figures only.
+"""
+
+import argparse
+import math
+import os
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def parse_args() -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--stitches", type=int, nargs="+", default=[10_000, 50_000])
+    parser.add_argument("--frames", type=int, default=9, help="frame changes per figure")
+    parser.add_argument("--zip", type=Path, help="extension zip (default: newest dist/*.zip)")
+    return parser.parse_args()
+
+
+def install(zip_arg: Path | None) -> None:
+    import bpy
+
+    zips = sorted((ROOT / "dist").glob("knitwear-*.zip"), key=lambda p: p.stat().st_mtime)
+    zip_path = zip_arg or (zips[-1] if zips else None)
+    if zip_path is None:
+        sys.exit("bench: no dist/knitwear-*.zip; run scripts/bootstrap.sh first")
+    result = bpy.ops.extensions.package_install_files(
+        filepath=str(zip_path), repo="user_default", enable_on_install=True
+    )
+    if result != {"FINISHED"}:
+        sys.exit(f"bench: installing {zip_path} failed: {result}")
+
+
+def waving_grid(subdivisions: int) -> "bpy.types.Object":  # noqa: F821  (late import)
+    import bpy
+
+    bpy.ops.wm.read_homefile(use_empty=True)
+    bpy.ops.mesh.primitive_grid_add(
+        x_subdivisions=subdivisions, y_subdivisions=subdivisions, size=1.0
+    )
+    cloth = bpy.context.active_object
+    cloth.shape_key_add(name="Basis")
+    wave = cloth.shape_key_add(name="Wave")
+    co = np.empty(3 * len(wave.data), np.float32)
+    wave.data.foreach_get("co", co)
+    co = co.reshape(-1, 3)
+    co[:, 2] = 0.1 * np.sin(2 * np.pi * (co[:, 0] + co[:, 1]))
+    wave.data.foreach_set("co", co.ravel())
+    for frame, value in ((1, 0.0), (100, 1.0)):
+        wave.value = value
+        wave.keyframe_insert("value", frame=frame)
+    bpy.context.scene.frame_set(1)
+    return cloth
+
+
+def median_ms(times: list[float]) -> float:
+    return 1000 * statistics.median(times)
+
+
+def bench(stitches: int, frames: int) -> dict[str, float]:
+    import bpy
+    from bl_ext.user_default.knitwear import api, follow, mesh_build
+
+    side = math.isqrt(stitches)
+    source = waving_grid(max(16, side // 2))
+    knit = api.knit_object(source, size_mode="COUNTS", courses=side, wales=side)
+    knit.knitwear.follow_source = False  # the bench drives follow() itself
+    scene = bpy.context.scene
+    mesh = knit.data
+    nv = len(mesh.vertices)
+    t: dict[str, list[float]] = {k: [] for k in ("sample", "core", "write", "frame", "floor",
+                                                  "normals")}
+    follow.follow(knit)  # bind once
+    follower = follow._followers[knit.session_uid]
+    buffer = np.empty((nv, 3), np.float32)
+    for k in range(frames):
+        scene.frame_set(2 + 7 * k)
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        t0 = time.perf_counter()
+        follow.follow(knit, depsgraph=depsgraph)
+        t["frame"].append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        mesh.vertex_normals[0].vector  # noqa: B018  (forces the lazy normal recompute)
+        t["normals"].append(time.perf_counter() - t0)
+        # The parts, again, one by one.
+        t0 = time.perf_counter()
+        sampled = api.sample_source(knit, bpy.context, depsgraph)
+        t["sample"].append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        follower.knit.positions(sampled.surface, out=buffer)
+        t["core"].append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        mesh_build.write_positions(mesh, buffer)
+        t["write"].append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        mesh.attributes["position"].data.foreach_set("vector", buffer.ravel())
+        t["floor"].append(time.perf_counter() - t0)
+    row = {k: median_ms(v) for k, v in t.items()}
+    row["stitches"] = side * side
+    row["vertices"] = nv
+    row["triangles"] = len(mesh.polygons)
+    return row
+
+
+def main() -> None:
+    args = parse_args()
+    os.environ["BLENDER_USER_RESOURCES"] = tempfile.mkdtemp(prefix="knitwear-bench-")
+    import bpy
+
+    install(args.zip)
+    print(f"bench: Blender {bpy.app.version_string}, {os.cpu_count()} CPUs, "
+          f"medians over {args.frames} frames")
+    rows = [bench(n, args.frames) for n in args.stitches]
+    print()
+    print(f"{'stitches':>9} {'vertices':>10} {'sample':>8} {'core':>8} {'write':>8} "
+          f"{'frame':>8} {'floor':>8} {'normals':>8} {'fps':>6} {'+norm':>6}   (ms)")
+    for r in rows:
+        print(f"{r['stitches']:9,} {r['vertices']:10,} {r['sample']:8.1f} {r['core']:8.1f} "
+              f"{r['write']:8.1f} {r['frame']:8.1f} {r['floor']:8.1f} {r['normals']:8.1f} "
+              f"{1000 / r['frame']:6.1f} {1000 / (r['frame'] + r['normals']):6.1f}")
+
+
+if __name__ == "__main__":
+    main()
