@@ -7,7 +7,7 @@ package this extension bundles as a wheel.
 
 import bpy
 
-from . import follow, operators, panels, properties
+from . import follow, operators, panels, plush, properties
 
 _CLASSES: tuple[type, ...] = (
     operators.OBJECT_OT_knitwear_knit,
@@ -23,9 +23,11 @@ def register() -> None:
         bpy.utils.register_class(cls)
     bpy.types.VIEW3D_MT_object.append(operators.draw_object_menu)
     follow.register()
+    plush.register()
 
 
 def unregister() -> None:
+    plush.unregister()
     follow.unregister()
     bpy.types.VIEW3D_MT_object.remove(operators.draw_object_menu)
     for cls in reversed(_CLASSES):
