@@ -114,8 +114,10 @@ def cushion() -> "bpy.types.Object":  # noqa: F821
         for i in range(nu):
             s, t = i / (nu - 1), j / (nv - 1)
             dome = math.sin(math.pi * s) * math.sin(math.pi * t)
+            # x runs against u so that the surface's normal (u x v) points up, out of the
+            # cushion: the pile grows on the normal's side.
             spline.points[j * nu + i].co = (
-                (s - 0.5) * CUSHION, (t - 0.5) * CUSHION, 0.05 + 0.09 * dome, 1.0
+                (0.5 - s) * CUSHION, (t - 0.5) * CUSHION, 0.05 + 0.09 * dome, 1.0
             )
     return obj
 
@@ -155,7 +157,7 @@ def render(engine: str, path: Path) -> None:
     scene.render.engine = engine
     if engine == "BLENDER_WORKBENCH":
         shading = scene.display.shading
-        shading.light = "FLAT"  # the pile colours themselves: root dark, tip light
+        shading.light = "STUDIO"  # lit: the pressed pile faces the light differently
         shading.color_type = "VERTEX"  # "Attribute" in the UI: the pile colours
         shading.show_cavity = False
         scene.display.render_aa = "16"
@@ -199,7 +201,12 @@ def main() -> None:
     )
     # The cushion's own surface stays as the backing under the pile, in a darker tone.
     backing = bpy.data.materials.new("Backing")
-    backing.diffuse_color = (0.08, 0.005, 0.01, 1.0)
+    backing.diffuse_color = (0.08, 0.005, 0.01, 1.0)  # Workbench
+    if backing.node_tree is None:
+        backing.use_nodes = True  # Blender 4.x; 5.0 always has a tree
+    bsdf = backing.node_tree.nodes.get("Principled BSDF")
+    if bsdf is not None:
+        bsdf.inputs["Base Color"].default_value = backing.diffuse_color
     source.data.materials.append(backing)
 
     render("BLENDER_WORKBENCH", args.out / "plush_cushion.png")
