@@ -7,11 +7,12 @@ package this extension bundles as a wheel.
 
 import bpy
 
-from . import follow, operators, panels, plush, properties
+from . import bake, follow, operators, panels, plush, properties
 
 _CLASSES: tuple[type, ...] = (
     operators.OBJECT_OT_knitwear_knit,
     operators.OBJECT_OT_knitwear_update,
+    bake.OBJECT_OT_knitwear_bake,
     panels.VIEW3D_PT_knitwear,
 )
 

@@ -2,6 +2,7 @@
 
 import bpy
 
+from .bake import OBJECT_OT_knitwear_bake
 from .operators import OBJECT_OT_knitwear_knit, OBJECT_OT_knitwear_update
 from .settings_ui import draw_settings
 
@@ -35,3 +36,4 @@ class VIEW3D_PT_knitwear(bpy.types.Panel):
         row = layout.row()
         row.scale_y = 1.4
         row.operator(OBJECT_OT_knitwear_update.bl_idname, icon="FILE_REFRESH")
+        layout.operator(OBJECT_OT_knitwear_bake.bl_idname, icon="FILE_CACHE")

@@ -10,13 +10,10 @@ the Knit operator in 2x2 rib with two-colour stripes, renders it with Workbench 
 
 import argparse
 import math
-import os
-import sys
-import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from example_setup import ROOT, extension_zip, look_at, start_blender, workbench
 
 
 def parse_args() -> argparse.Namespace:
@@ -26,27 +23,6 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--width", type=int, default=960, help="render width, pixels")
     parser.add_argument("--height", type=int, default=720, help="render height, pixels")
     return parser.parse_args()
-
-
-def extension_zip(given: Path | None) -> Path:
-    if given is not None:
-        return given
-    zips = sorted((ROOT / "dist").glob("knitwear-*.zip"), key=lambda p: p.stat().st_mtime)
-    if not zips:
-        sys.exit("demo: no dist/knitwear-*.zip; run scripts/bootstrap.sh first")
-    return zips[-1]
-
-
-def install(zip_path: Path) -> None:
-    """Install and enable the extension the way Edit > Preferences > Get Extensions >
-    Install from Disk does."""
-    import bpy
-
-    result = bpy.ops.extensions.package_install_files(
-        filepath=str(zip_path), repo="user_default", enable_on_install=True
-    )
-    if result != {"FINISHED"}:
-        sys.exit(f"demo: installing {zip_path} failed: {result}")
 
 
 def swatch() -> "bpy.types.Object":  # noqa: F821  (bpy is imported late, on purpose)
@@ -96,8 +72,8 @@ def stage() -> None:
     camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
     camera.data.lens = 50.0
     camera.location = Vector((0.045, -0.215, 0.185))
-    look_at = Vector((-0.004, 0.0, 0.012))
-    camera.rotation_euler = (look_at - camera.location).to_track_quat("-Z", "Y").to_euler()
+    target = (-0.004, 0.0, 0.012)
+    look_at(camera, target)
     scene.collection.objects.link(camera)
     scene.camera = camera
 
@@ -111,37 +87,14 @@ def stage() -> None:
     scene.world = world
 
 
-def render_settings(width: int, height: int, path: Path) -> None:
-    import bpy
-
-    scene = bpy.context.scene
-    scene.render.engine = "BLENDER_WORKBENCH"
-    scene.render.resolution_x, scene.render.resolution_y = width, height
-    scene.render.resolution_percentage = 100
-    scene.display.render_aa = "8"
-    shading = scene.display.shading
-    shading.light = "STUDIO"
-    shading.color_type = "VERTEX"  # "Attribute" in the UI: the knit's yarn colours
-    shading.show_cavity = True  # darkens the crevices between loops: reads as depth
-    shading.cavity_type = "BOTH"
-    shading.show_specular_highlight = False  # wool has no gloss
-    scene.view_settings.view_transform = "Standard"
-    scene.render.image_settings.file_format = "PNG"
-    scene.render.filepath = str(path)
-
-
 def main() -> None:
     args = parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
     zip_path = extension_zip(args.zip)
-
-    # Blender reads its user folders once, when bpy is first imported.
-    os.environ["BLENDER_USER_RESOURCES"] = tempfile.mkdtemp(prefix="knitwear-demo-")
+    start_blender(zip_path)
     import bpy
 
-    install(zip_path)
     print(f"demo: installed {zip_path.name}")
-    bpy.ops.wm.read_homefile(use_empty=True)
 
     table()
     source = swatch()
@@ -176,7 +129,7 @@ def main() -> None:
     source.hide_set(True)
 
     png = args.out / "demo.png"
-    render_settings(args.width, args.height, png)
+    workbench(args.width, args.height, png)
     t0 = time.perf_counter()
     bpy.ops.render.render(write_still=True)
     print(f"demo: rendered {png} ({args.width}x{args.height}, Workbench) "

@@ -82,8 +82,11 @@ def test_panel_on_a_knit_and_on_a_source(addon: ModuleType, api: ModuleType) -> 
     bpy.context.view_layer.objects.active = knit
     log = []
     panel.draw(FakePanel(log), bpy.context)
-    assert ("prop", "source") in log
-    assert log[-1] == ("operator", "object.knitwear_update")
+    assert ("prop", "source") in log and ("prop", "follow_source") in log
+    assert log[-2:] == [
+        ("operator", "object.knitwear_update"),
+        ("operator", "object.knitwear_bake"),
+    ]
 
 
 def test_object_menu_entries(addon: ModuleType) -> None:

@@ -1,0 +1,125 @@
+"""Baking a knit's animation for machines without the extension, and the example scripts a
+technical director starts from (run as a user runs them: separate processes)."""
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+from types import ModuleType
+
+import bpy
+import numpy as np
+from blender_scenes import SMALL, positions
+from conftest import ROOT, _extension_zip
+from test_follow import waving_cloth
+
+# Opens a .blend in a Blender with no extension installed and prints the knit's evaluated
+# positions at a frame, as JSON.
+_WITHOUT_EXTENSION = """
+import json, sys, numpy as np, bpy
+bpy.ops.wm.open_mainfile(filepath=sys.argv[1])
+assert "bl_ext.user_default.knitwear" not in bpy.context.preferences.addons
+bpy.context.scene.frame_set(int(sys.argv[3]))
+obj = bpy.data.objects[sys.argv[2]]
+mesh = obj.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh()
+co = np.empty(3 * len(mesh.vertices), np.float32)
+mesh.vertices.foreach_get("co", co)
+print("POSITIONS" + json.dumps(co.tolist()))
+"""
+
+
+def _evaluated_positions(obj: bpy.types.Object) -> np.ndarray:
+    mesh = obj.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh()
+    try:
+        return positions(mesh)
+    finally:
+        obj.evaluated_get(bpy.context.evaluated_depsgraph_get()).to_mesh_clear()
+
+
+def test_a_baked_knit_replays_its_animation_without_the_extension(
+    api: ModuleType, addon: ModuleType, tmp_path: Path
+) -> None:
+    scene = bpy.context.scene
+    knit = api.knit_object(waving_cloth(), **SMALL)
+    scene.frame_end = 10
+    blend = tmp_path / "baked.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+    knit = bpy.data.objects[knit.name]
+    followed = {}
+    for frame in (3, 7):
+        scene.frame_set(frame)
+        followed[frame] = positions(knit.data)
+    scene.frame_set(1)
+
+    bpy.context.view_layer.objects.active = knit
+    assert bpy.ops.object.knitwear_bake() == {"FINISHED"}
+    cache = tmp_path / f"{bpy.path.clean_name(knit.name)}.pc2"
+    start, frames = addon.bake.read_pc2(cache)
+    assert start == scene.frame_start and len(frames) == scene.frame_end - scene.frame_start + 1
+    np.testing.assert_array_equal(frames[7 - start], followed[7])
+    assert knit.modifiers[0].type == "MESH_CACHE" and not knit.knitwear.follow_source
+    scene.frame_set(7)
+    np.testing.assert_array_equal(_evaluated_positions(knit), followed[7])
+    bpy.ops.wm.save_mainfile()
+
+    env = dict(os.environ, BLENDER_USER_RESOURCES=tempfile.mkdtemp(prefix="no-extension-"))
+    done = subprocess.run(
+        [sys.executable, "-c", _WITHOUT_EXTENSION, str(blend), knit.name, "3"],
+        capture_output=True, text=True, env=env, check=False, timeout=300,
+    )
+    line = next((s for s in done.stdout.splitlines() if s.startswith("POSITIONS")), None)
+    assert line is not None, done.stdout[-2000:] + done.stderr[-2000:]
+    elsewhere = np.array(json.loads(line.removeprefix("POSITIONS")), np.float32).reshape(-1, 3)
+    np.testing.assert_array_equal(elsewhere, followed[3])
+
+
+def test_baking_an_unsaved_file_needs_a_path(api: ModuleType) -> None:
+    knit = api.knit_object(waving_cloth(), **SMALL)
+    bpy.context.view_layer.objects.active = knit
+    modifiers = [m.name for m in knit.modifiers]
+    try:
+        bpy.ops.object.knitwear_bake()
+    except RuntimeError as err:
+        assert "save the .blend first" in str(err)
+    else:
+        raise AssertionError("baking an unsaved file with a relative path did not fail")
+    assert [m.name for m in knit.modifiers] == modifiers and knit.knitwear.follow_source
+
+
+def _run_example(script: str, *args: str) -> str:
+    env = dict(os.environ, BLENDER_USER_RESOURCES="")  # the example makes its own
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "examples" / script), "--zip", str(_extension_zip()), *args],
+        capture_output=True, text=True, env=env, check=False, timeout=600,
+    )
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+    return done.stdout
+
+
+def test_the_animation_example_renders_a_bending_sleeve(tmp_path: Path) -> None:
+    from PIL import Image
+
+    out = _run_example(
+        "animate.py", "--frames", "1", "3", "--size", "96", "72", "--gauge", "6",
+        "--out", str(tmp_path),
+    )
+    assert "rendered 3 frames" in out
+    frames = sorted(tmp_path.glob("frame_*.png"))
+    assert len(frames) == 3 and (tmp_path / "sleeve.blend").exists()
+    straight, bent = (np.asarray(Image.open(frames[i]), np.float32) for i in (0, 1))
+    assert np.abs(straight - bent).mean() > 1.0, "the sleeve did not bend"
+
+
+def test_the_contact_sheet_example_renders_every_pattern_and_colourway(tmp_path: Path) -> None:
+    from PIL import Image
+
+    _run_example(
+        "contact_sheet.py", "--patterns", "seed", "garter", "--colourways", "nordic", "sea",
+        "--tile", "64", "48", "--out", str(tmp_path),
+    )
+    tiles = {p.name for p in tmp_path.glob("*.png")} - {"contact_sheet.png"}
+    assert tiles == {f"{p}_{c}.png" for p in ("seed", "garter") for c in ("nordic", "sea")}
+    sheet = Image.open(tmp_path / "contact_sheet.png")
+    assert sheet.size == (160 + 2 * 64, 24 + 2 * 48)
