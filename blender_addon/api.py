@@ -282,6 +282,8 @@ def _check_source(source: bpy.types.Object | None, what: str) -> bpy.types.Objec
         )
     if source.knitwear.is_knit:
         raise knitwear.SurfaceError(f"'{source.name}' is itself a knit: knit its source instead")
+    if source.knitwear_plush.is_plush:
+        raise knitwear.SurfaceError(f"'{source.name}' is a plush: knit its source instead")
     return source
 
 

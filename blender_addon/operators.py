@@ -72,6 +72,9 @@ class OBJECT_OT_knitwear_knit(KnitSettingsMixin, bpy.types.Operator):
         if obj.knitwear.is_knit:
             cls.poll_message_set("The active object is already a knit: use Update Knit")
             return False
+        if obj.knitwear_plush.is_plush:
+            cls.poll_message_set("The active object is a plush: knit its source instead")
+            return False
         return True
 
     def execute(self, context: bpy.types.Context) -> set[str]:

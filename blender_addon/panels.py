@@ -18,7 +18,12 @@ class VIEW3D_PT_knitwear(bpy.types.Panel):
     @classmethod
     def poll(cls, context: bpy.types.Context) -> bool:
         obj = context.active_object
-        return obj is not None and obj.type in {"SURFACE", "MESH"}
+        # A plush object has a panel of its own (plush.py).
+        return (
+            obj is not None
+            and obj.type in {"SURFACE", "MESH"}
+            and not obj.knitwear_plush.is_plush
+        )
 
     def draw(self, context: bpy.types.Context) -> None:
         layout = self.layout

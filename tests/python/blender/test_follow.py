@@ -163,3 +163,29 @@ def test_an_animation_renders_headless_frame_by_frame(api: ModuleType, tmp_path:
     assert len(frames) == 100
     first, last = (np.asarray(Image.open(f), dtype=np.float32) for f in (frames[0], frames[-1]))
     assert np.abs(first - last).mean() > 1.0, "the rendered knit did not move with the wave"
+
+
+def test_an_update_with_a_new_topology_rebinds_the_follower(api: ModuleType) -> None:
+    scene = bpy.context.scene
+    knit = knit_of(api, waving_cloth())
+    scene.frame_set(5)  # binds
+    api.update_knit(knit, courses=SMALL["courses"] + 2)  # new topology at frame 5
+    rest = positions(knit.data)
+    triangles = corner_verts(knit.data)
+    scene.frame_set(9)
+    p = positions(knit.data)
+    assert p.shape == rest.shape and np.isfinite(p).all() and np.abs(p - rest).max() > 0
+    np.testing.assert_array_equal(corner_verts(knit.data), triangles)
+    scene.frame_set(5)
+    np.testing.assert_array_equal(positions(knit.data), rest)
+
+
+def test_a_plush_cannot_be_knitted(api: ModuleType, addon: ModuleType) -> None:
+    import knitwear
+    import pytest
+
+    plush = addon.plush.knit_plush(waving_cloth(), courses=6, wales=6)
+    bpy.context.view_layer.objects.active = plush
+    assert not bpy.ops.object.knitwear_knit.poll()
+    with pytest.raises(knitwear.SurfaceError):
+        api.knit_object(plush, **SMALL)

@@ -63,3 +63,35 @@ def test_workbench_render_shows_both_yarn_colours(api: ModuleType, tmp_path: Pat
         near = np.linalg.norm(rgb - _srgb(colour), axis=-1) < 0.12
         share = np.mean(near & covered)
         assert share > 0.05, f"yarn colour {colour} covers only {share:.1%} of the frame"
+
+
+def test_cycles_renders_the_knit_in_its_yarn_colour(api: ModuleType, tmp_path: Path) -> None:
+    source = nurbs_patch()
+    source.hide_render = True
+    api.knit_object(source, **SMALL, color_1=RED, color_variation=0.0)
+    scene = bpy.context.scene
+    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    camera.data.type = "ORTHO"
+    camera.data.ortho_scale = 1.1
+    camera.location = (0.0, 0.0, 4.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    world = bpy.data.worlds.new("White")
+    world.color = (1.0, 1.0, 1.0)  # uniform light from every side: the base colour shows
+    scene.world = world
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = 4
+    scene.cycles.use_denoising = False
+    scene.render.resolution_x = scene.render.resolution_y = 48
+    scene.render.film_transparent = True
+    scene.view_settings.view_transform = "Standard"
+    scene.render.filepath = str(tmp_path / "cycles.png")
+    bpy.ops.render.render(write_still=True)
+    pixels = np.asarray(Image.open(tmp_path / "cycles.png").convert("RGBA"), np.float32) / 255
+    covered = pixels[..., 3] > 0.5
+    assert covered.mean() > 0.3, f"the knit covers only {covered.mean():.0%} of the frame"
+    rgb = pixels[covered][:, :3]
+    # The yarn material shows its vertex colour: red dominates wherever the knit is.
+    r, g, b = np.median(rgb, axis=0)
+    assert r > 0.08 and r > 3 * max(g, b), f"median colour {(r, g, b)}"
