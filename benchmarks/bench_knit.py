@@ -8,7 +8,8 @@ For each stitch count, on a NURBS surface patch at default quality (6 ring segme
 16 samples per loop), it prints:
   core      seconds inside `knitwear.knit` (sampled surface given), and triangles per second;
   floor     seconds to copy the core's output bytes once in memory with NumPy (the physical
-            floor for producing them);
+            floor for producing them), into touched memory; "fresh": into newly allocated
+            memory, page faults and kernel zeroing included (what any new mesh pays);
   mesh      seconds to build the Blender mesh from the core's arrays (the add-on's fast route);
             "1st" is the first mesh of its face count, which builds the cached template;
   click     seconds from calling the Knit operator to a finished mesh (sampling, core, mesh,
@@ -76,7 +77,9 @@ def patch() -> "bpy.types.Object":  # noqa: F821  (bpy is imported late, on purp
     return bpy.context.active_object
 
 
-def copy_floor(result: object, repeats: int) -> tuple[float, int]:
+def copy_floor(result: object, repeats: int) -> tuple[float, float, int]:
+    """Seconds to copy the output's bytes into memory already touched (the pure copy), and
+    into freshly allocated memory (what any new mesh pays: the kernel zeroes each new page)."""
     import numpy as np
 
     arrays = [result.vertices, result.triangles, result.edges, result.corner_edges,
@@ -87,8 +90,14 @@ def copy_floor(result: object, repeats: int) -> tuple[float, int]:
         for dst, src in zip(targets, arrays, strict=True):
             np.copyto(dst, src)
 
+    def fresh_copy() -> None:
+        # Large blocks are mapped fresh by malloc and unmapped on free: new pages each time.
+        copies = [a.copy() for a in arrays]
+        del copies
+
     copy()  # touch the pages once: the floor is copying, not page faults
-    return median_seconds(copy, repeats), sum(a.nbytes for a in arrays)
+    return (median_seconds(copy, repeats), median_seconds(fresh_copy, repeats),
+            sum(a.nbytes for a in arrays))
 
 
 def gn_peer(cols: int, rows: int) -> tuple[float, int] | None:
@@ -130,7 +139,7 @@ def bench(stitches: int, repeats: int, peer: bool) -> dict[str, object]:
 
     result = core()
     core_s = median_seconds(core, repeats)
-    floor_s, nbytes = copy_floor(result, repeats)
+    floor_s, fresh_s, nbytes = copy_floor(result, repeats)
 
     def mesh(result: object = result) -> None:
         bpy.data.meshes.remove(mesh_build.new_mesh("bench", result))
@@ -162,6 +171,7 @@ def bench(stitches: int, repeats: int, peer: bool) -> dict[str, object]:
         "triangles": triangles,
         "core_s": core_s,
         "floor_s": floor_s,
+        "fresh_s": fresh_s,
         "bytes": nbytes,
         "mesh_s": mesh_s,
         "mesh_first_s": mesh_first_s,
@@ -176,6 +186,7 @@ def bench(stitches: int, repeats: int, peer: bool) -> dict[str, object]:
 def print_table(rows: list[dict[str, object]]) -> None:
     print()
     print(f"{'stitches':>9} {'triangles':>11} {'core s':>8} {'Mtri/s':>8} {'floor s':>8} "
+          f"{'fresh s':>8} "
           f"{'mesh s':>8} {'1st':>6} {'click s':>8} {'1st':>6} {'GN peer s':>10} "
           f"{'GN tris':>11}")
     for r in rows:
@@ -184,12 +195,13 @@ def print_table(rows: list[dict[str, object]]) -> None:
         peer_t = f"{peer[1]:11,}" if peer else f"{'-':>11}"
         print(
             f"{r['stitches']:9,} {r['triangles']:11,} {r['core_s']:8.3f} "
-            f"{r['triangles'] / r['core_s'] / 1e6:8.2f} {r['floor_s']:8.4f} "
+            f"{r['triangles'] / r['core_s'] / 1e6:8.2f} {r['floor_s']:8.4f} {r['fresh_s']:8.4f} "
             f"{r['mesh_s']:8.3f} {r['mesh_first_s']:6.3f} {r['click_s']:8.3f} "
             f"{r['click_first_s']:6.3f} {peer_s} {peer_t}"
         )
     print()
-    print("core: knitwear.knit alone; floor: copying its output bytes once (NumPy); mesh: "
+    print("core: knitwear.knit alone; floor: copying its output bytes once (NumPy) into "
+          "touched memory; fresh: into newly allocated memory; mesh: "
           "Blender mesh from the arrays; click: Knit operator to finished object; 1st: the "
           "first of a face count (builds the cached triangle template); GN peer: "
           f"Geometry Nodes loop instancing + sweep, ring {RING}, {SAMPLES} samples per loop.")
