@@ -21,14 +21,11 @@ import argparse
 import math
 import os
 import statistics
-import sys
-import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
-
-ROOT = Path(__file__).resolve().parents[1]
+from bench_setup import start_blender
 
 
 def parse_args() -> argparse.Namespace:
@@ -39,18 +36,6 @@ def parse_args() -> argparse.Namespace:
     return parser.parse_args()
 
 
-def install(zip_arg: Path | None) -> None:
-    import bpy
-
-    zips = sorted((ROOT / "dist").glob("knitwear-*.zip"), key=lambda p: p.stat().st_mtime)
-    zip_path = zip_arg or (zips[-1] if zips else None)
-    if zip_path is None:
-        sys.exit("bench: no dist/knitwear-*.zip; run scripts/bootstrap.sh first")
-    result = bpy.ops.extensions.package_install_files(
-        filepath=str(zip_path), repo="user_default", enable_on_install=True
-    )
-    if result != {"FINISHED"}:
-        sys.exit(f"bench: installing {zip_path} failed: {result}")
 
 
 def waving_grid(subdivisions: int) -> "bpy.types.Object":  # noqa: F821  (late import)
@@ -126,10 +111,9 @@ def bench(stitches: int, frames: int) -> dict[str, float]:
 
 def main() -> None:
     args = parse_args()
-    os.environ["BLENDER_USER_RESOURCES"] = tempfile.mkdtemp(prefix="knitwear-bench-")
+    start_blender(args.zip)
     import bpy
 
-    install(args.zip)
     print(f"bench: Blender {bpy.app.version_string}, {os.cpu_count()} CPUs, "
           f"medians over {args.frames} frames")
     rows = [bench(n, args.frames) for n in args.stitches]

@@ -23,15 +23,12 @@ import argparse
 import math
 import os
 import re
-import statistics
 import subprocess
 import sys
-import tempfile
-import time
-from collections.abc import Callable
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from bench_setup import ROOT, median_seconds, start_blender
+
 GN_PEER = ROOT / ".." / "shared" / "peers" / "gn_knit.py"
 RING, SAMPLES = 6, 16  # the add-on's defaults
 
@@ -45,27 +42,8 @@ def parse_args() -> argparse.Namespace:
     return parser.parse_args()
 
 
-def median_seconds(run: Callable[[], object], repeats: int) -> float:
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
 
 
-def install(zip_arg: Path | None) -> None:
-    import bpy
-
-    zips = sorted((ROOT / "dist").glob("knitwear-*.zip"), key=lambda p: p.stat().st_mtime)
-    zip_path = zip_arg or (zips[-1] if zips else None)
-    if zip_path is None:
-        sys.exit("bench: no dist/knitwear-*.zip; run scripts/bootstrap.sh first")
-    result = bpy.ops.extensions.package_install_files(
-        filepath=str(zip_path), repo="user_default", enable_on_install=True
-    )
-    if result != {"FINISHED"}:
-        sys.exit(f"bench: installing {zip_path} failed: {result}")
 
 
 def patch() -> "bpy.types.Object":  # noqa: F821  (bpy is imported late, on purpose)
@@ -209,10 +187,9 @@ def print_table(rows: list[dict[str, object]]) -> None:
 
 def main() -> None:
     args = parse_args()
-    os.environ["BLENDER_USER_RESOURCES"] = tempfile.mkdtemp(prefix="knitwear-bench-")
+    start_blender(args.zip)
     import bpy
 
-    install(args.zip)
     print(f"bench: Blender {bpy.app.version_string}, {os.cpu_count()} CPUs, "
           f"{args.repeats} repeats per figure")
     rows = []

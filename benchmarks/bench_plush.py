@@ -16,14 +16,10 @@ The paper's figure: about 750 ms on a 2016 GPU. Targets: click under 750 ms, cam
 
 import argparse
 import os
-import statistics
-import sys
-import tempfile
-import time
-from collections.abc import Callable
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from bench_setup import median_seconds, start_blender
+
 COURSES, WALES = 384, 240
 
 
@@ -34,27 +30,8 @@ def parse_args() -> argparse.Namespace:
     return parser.parse_args()
 
 
-def median_seconds(run: Callable[[], object], repeats: int) -> float:
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        run()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
 
 
-def install(zip_arg: Path | None) -> None:
-    import bpy
-
-    zips = sorted((ROOT / "dist").glob("knitwear-*.zip"), key=lambda p: p.stat().st_mtime)
-    zip_path = zip_arg or (zips[-1] if zips else None)
-    if zip_path is None:
-        sys.exit("bench: no dist/knitwear-*.zip; run scripts/bootstrap.sh first")
-    result = bpy.ops.extensions.package_install_files(
-        filepath=str(zip_path), repo="user_default", enable_on_install=True
-    )
-    if result != {"FINISHED"}:
-        sys.exit(f"bench: installing {zip_path} failed: {result}")
 
 
 def aim(camera: "bpy.types.Object", location: tuple[float, float, float]) -> None:  # noqa: F821
@@ -68,10 +45,8 @@ def aim(camera: "bpy.types.Object", location: tuple[float, float, float]) -> Non
 
 def main() -> None:
     args = parse_args()
-    os.environ["BLENDER_USER_RESOURCES"] = tempfile.mkdtemp(prefix="knitwear-bench-")
+    start_blender(args.zip)
     import bpy
-
-    install(args.zip)
     import knitwear
     from bl_ext.user_default.knitwear import plush, sampling
 
