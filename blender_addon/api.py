@@ -22,16 +22,9 @@ from typing import Any
 
 import bpy
 import knitwear
-import numpy as np
 
 from . import material, mesh_build, sampling, source_link
-from .properties import (
-    CUSTOM_PATTERN,
-    FLOAT_SETTINGS,
-    MAX_COLORS,
-    SETTING_NAMES,
-    setting_defaults,
-)
+from .properties import CUSTOM_PATTERN, KNIT_SETTINGS, MAX_COLORS
 
 #: Called with the fraction done (0..1) between the steps of a knit.
 Progress = Callable[[float], None]
@@ -57,33 +50,10 @@ class KnitOutcome:
 
 def settings_from(obj: bpy.types.Object) -> dict[str, Any]:
     """The knit settings stored on ``obj`` (a knit object), as `knit_object` keywords."""
-    stored = obj.knitwear
-    out: dict[str, Any] = {}
-    for name in SETTING_NAMES:
-        value = getattr(stored, name)
-        out[name] = tuple(value) if hasattr(value, "__len__") and not isinstance(
-            value, str
-        ) else value
-    return out
+    return KNIT_SETTINGS.read(obj.knitwear)
 
 
-def _complete(settings: Mapping[str, Any]) -> dict[str, Any]:
-    unknown = sorted(set(settings) - set(SETTING_NAMES))
-    if unknown:
-        raise TypeError(
-            f"unknown knit setting(s) {', '.join(unknown)}; known: {', '.join(SETTING_NAMES)}"
-        )
-    merged = setting_defaults() | dict(settings)
-    # Blender stores float settings in single precision. Rounding the API's values the same
-    # way makes knit_object(..., x=0.15) and a later update_knit() (which reads the stored
-    # 0.15f) bit-identical, as they are for the operator.
-    for name in FLOAT_SETTINGS:
-        value = merged[name]
-        if isinstance(value, int | float):
-            merged[name] = float(np.float32(value))
-        else:  # a colour: tuple, list or Blender's property array
-            merged[name] = tuple(float(np.float32(x)) for x in value)
-    return merged
+_complete = KNIT_SETTINGS.complete
 
 
 def _chart_text(text: str) -> str:

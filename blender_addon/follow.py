@@ -13,7 +13,6 @@ The frame handler never lets an error escape into a render: a knit that cannot f
 source was deleted, or changed its UV layout) is reported on the console and left in place.
 """
 
-import traceback
 from dataclasses import dataclass
 from typing import Any
 
@@ -22,7 +21,7 @@ import knitwear
 import numpy as np
 from bpy.app.handlers import persistent
 
-from . import api, mesh_build
+from . import api, frame_handlers, mesh_build
 
 
 @dataclass
@@ -37,8 +36,6 @@ class _Follower:
 
 #: Bindings by knit object (`ID.session_uid`), rebuilt on demand and dropped on file load.
 _followers: dict[int, _Follower] = {}
-#: Re-entry guard: writing positions must not make the handler run again inside itself.
-_busy = False
 
 
 def _key(obj: bpy.types.Object) -> tuple[Any, ...]:
@@ -101,23 +98,11 @@ def followers(scene: bpy.types.Scene) -> list[bpy.types.Object]:
     ]
 
 
-@persistent
-def _on_frame_change(scene: bpy.types.Scene, depsgraph: bpy.types.Depsgraph | None = None) -> None:
-    global _busy
-    if _busy:
-        return
-    _busy = True
-    try:
-        for obj in followers(scene):
-            try:
-                follow(obj, depsgraph=depsgraph)
-            except knitwear.KnitError as err:
-                print(f"Knitwear: '{obj.name}' did not follow its source: {err}")
-    except Exception:  # noqa: BLE001  (a frame handler must never break a render)
-        print("Knitwear: error while following sources (please report it):")
-        traceback.print_exc()
-    finally:
-        _busy = False
+_on_frame_change = frame_handlers.per_object(
+    followers,
+    lambda obj, depsgraph: follow(obj, depsgraph=depsgraph),
+    "did not follow its source",
+)
 
 
 @persistent

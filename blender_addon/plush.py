@@ -25,7 +25,6 @@ Scripting::
 import math
 import re
 import time
-import traceback
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -46,7 +45,8 @@ from bpy.props import (
 )
 from mathutils import Matrix, Vector
 
-from . import mesh_build, sampling
+from . import frame_handlers, mesh_build, sampling
+from .settings_schema import SettingsSchema
 
 MATERIAL_NAME = "Knitwear Plush"
 #: Point-domain float attribute: the core's per-vertex mask (0 round / horizontal slice,
@@ -187,23 +187,10 @@ class PlushSettingsMixin:
     )
 
 
+#: The plush settings as the scripting API sees them.
+PLUSH_SETTINGS = SettingsSchema("plush", PlushSettingsMixin)
 #: Settings by name, in declaration order.
-SETTING_NAMES: tuple[str, ...] = tuple(PlushSettingsMixin.__annotations__)
-FLOAT_SETTINGS = tuple(
-    name
-    for name, prop in PlushSettingsMixin.__annotations__.items()
-    if prop.function in (FloatProperty, FloatVectorProperty)
-)
-
-
-def setting_defaults() -> dict[str, Any]:
-    out = {}
-    for name, prop in PlushSettingsMixin.__annotations__.items():
-        default = prop.keywords.get("default")
-        if default is None:
-            default = "" if prop.function is StringProperty else default
-        out[name] = default
-    return out
+SETTING_NAMES: tuple[str, ...] = PLUSH_SETTINGS.names
 
 
 def _poll_source(_self: bpy.types.PropertyGroup, obj: bpy.types.Object) -> bool:
@@ -233,31 +220,11 @@ class PlushSettings(PlushSettingsMixin, bpy.types.PropertyGroup):
 # --- settings -> core keywords -------------------------------------------------------------
 
 
-def _complete(settings: Mapping[str, Any]) -> dict[str, Any]:
-    unknown = sorted(set(settings) - set(SETTING_NAMES))
-    if unknown:
-        raise TypeError(
-            f"unknown plush setting(s) {', '.join(unknown)}; known: {', '.join(SETTING_NAMES)}"
-        )
-    merged = setting_defaults() | dict(settings)
-    # Stored settings are single precision: round the API's the same way, so that a plush
-    # grown from a script and one re-grown from its stored settings are bit-identical.
-    for name in FLOAT_SETTINGS:
-        value = merged[name]
-        if isinstance(value, int | float):
-            merged[name] = float(np.float32(value))
-        else:
-            merged[name] = tuple(float(np.float32(x)) for x in value)
-    return merged
+_complete = PLUSH_SETTINGS.complete
 
 
 def _settings_from(obj: bpy.types.Object) -> dict[str, Any]:
-    stored = obj.knitwear_plush
-    out: dict[str, Any] = {}
-    for name in SETTING_NAMES:
-        value = getattr(stored, name)
-        out[name] = value if isinstance(value, str | int | float) else tuple(value)
-    return out
+    return PLUSH_SETTINGS.read(obj.knitwear_plush)
 
 
 def _noise_scales(text: str) -> list[int]:
@@ -565,8 +532,6 @@ class _Entry:
 
 #: Fields by plush object (`ID.session_uid`), re-grown on demand, dropped on file load.
 _fields: dict[int, _Entry] = {}
-#: Re-entry guard of the frame handler.
-_busy = False
 
 
 def _check_source(source: bpy.types.Object | None, what: str) -> bpy.types.Object:
@@ -780,23 +745,11 @@ def plush_objects(scene: bpy.types.Scene) -> list[bpy.types.Object]:
     ]
 
 
-@persistent
-def _on_frame_change(scene: bpy.types.Scene, depsgraph: bpy.types.Depsgraph | None = None) -> None:
-    global _busy
-    if _busy:
-        return
-    _busy = True
-    try:
-        for obj in plush_objects(scene):
-            try:
-                update_plush_view(obj, depsgraph=depsgraph)
-            except knitwear.KnitError as err:
-                print(f"Knitwear: plush '{obj.name}' did not follow the camera: {err}")
-    except Exception:  # noqa: BLE001  (a frame handler must never break a render)
-        print("Knitwear: error while updating plush views (please report it):")
-        traceback.print_exc()
-    finally:
-        _busy = False
+_on_frame_change = frame_handlers.per_object(
+    plush_objects,
+    lambda obj, depsgraph: update_plush_view(obj, depsgraph=depsgraph),
+    "did not follow the camera",
+)
 
 
 @persistent

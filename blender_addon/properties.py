@@ -21,6 +21,8 @@ from bpy.props import (
     StringProperty,
 )
 
+from .settings_schema import SettingsSchema
+
 #: How many yarn colours the palette offers (``color_1`` .. ``color_4``).
 MAX_COLORS = 4
 
@@ -323,26 +325,10 @@ class KnitwearSettings(KnitSettingsMixin, bpy.types.PropertyGroup):
     )
 
 
+#: The knit settings as the scripting API sees them.
+KNIT_SETTINGS = SettingsSchema("knit", KnitSettingsMixin)
 #: The settings' names, in declaration order (the scripting API's keyword arguments).
-SETTING_NAMES: tuple[str, ...] = tuple(KnitSettingsMixin.__annotations__)
-
-#: The settings Blender stores as single-precision floats.
-FLOAT_SETTINGS: tuple[str, ...] = tuple(
-    name
-    for name, prop in KnitSettingsMixin.__annotations__.items()
-    if prop.function in (FloatProperty, FloatVectorProperty)
-)
-
-
-def setting_defaults() -> dict[str, object]:
-    """Each setting's default value, as the scripting API applies it."""
-    defaults: dict[str, object] = {}
-    for name, prop in KnitSettingsMixin.__annotations__.items():
-        value = prop.keywords.get("default")
-        if value is None:
-            value = "" if prop.function is StringProperty else 0
-        defaults[name] = tuple(value) if isinstance(value, tuple | list) else value
-    return defaults
+SETTING_NAMES: tuple[str, ...] = KNIT_SETTINGS.names
 
 
 def register() -> None:
