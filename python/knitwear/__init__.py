@@ -16,6 +16,8 @@ Lengths are in scene units (metres by default); the gauge is stitches and rows p
 Every error a user can cause is a :class:`KnitError`.
 """
 
+from typing import Any
+
 from ._core import (
     BudgetError,
     ColorPattern,
@@ -34,10 +36,21 @@ from ._core import (
     SurfaceError,
     __version__,
     fractal_noise,
-    knit,
     measure_clearance,
     plush,
 )
+
+
+def knit(surface: GridSurface | MeshSurface, pattern: Pattern, **settings: Any) -> KnitResult:
+    """Knit ``pattern`` over ``surface``: ``Knit(surface, pattern, **settings).build(surface)``.
+
+    The keyword settings are `Knit`'s (see the README): ``courses``, ``wales``, ``gauge``,
+    ``yarn_radius``, ``stitch_size``, ``fluffiness``, ``ring_segments``, ``samples_per_loop``,
+    ``tension``, ``kappa``, ``seed``, ``colors``, ``color_image``, ``color_variation``,
+    ``threads``, ``budget_bytes``, ``measure_clearance``. ``stats["seconds"]`` is the build's.
+    """
+    return Knit(surface, pattern, **settings).build(surface)
+
 
 __all__ = [
     "BudgetError",

@@ -95,29 +95,6 @@ class KnitResult:
     yarn_radius: float
     stats: dict[str, Any]
 
-def knit(
-    surface: GridSurface | MeshSurface,
-    pattern: Pattern,
-    *,
-    courses: int | None = None,
-    wales: int | None = None,
-    gauge: tuple[float, float] | None = None,
-    yarn_radius: float | None = None,
-    stitch_size: tuple[float, float] | None = None,
-    fluffiness: float = 0.5,
-    ring_segments: int = 6,
-    samples_per_loop: int = 16,
-    tension: float = 0.0,
-    kappa: float = 0.0,
-    seed: int = 0,
-    colors: ColorPattern | None = None,
-    color_image: npt.NDArray[np.float32] | None = None,
-    color_variation: float = 0.15,
-    threads: int | None = None,
-    budget_bytes: int | None = None,
-    measure_clearance: bool = False,
-) -> KnitResult: ...
-
 class Knit:
     """A knit bound to its surface's (u,v) layout: counts, yarn radius, stitch size and
     buffer layout fixed once, so `build` and `positions` give one topology for the surface

@@ -15,7 +15,7 @@ use pyo3::types::PyDict;
 mod pile;
 
 use crate::error::KnitError;
-use crate::knit::{knit as core_knit, ColorImage, KnitOutput, KnitParams, PreparedKnit};
+use crate::knit::{ColorImage, KnitOutput, KnitParams, PreparedKnit};
 use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
 use crate::pattern::{ColorPattern, StitchPattern};
 use crate::surface::{GridSurface, MeshSurface, Surface};
@@ -473,7 +473,8 @@ impl AnySurface {
     }
 }
 
-/// The keyword settings shared by `knit` and `Knit`, checked and turned into core params.
+/// The keyword settings of `Knit` (and so of `knitwear.knit`), checked and turned into core
+/// params.
 #[allow(clippy::too_many_arguments)]
 fn params_from(
     courses: Option<i64>,
@@ -553,62 +554,6 @@ fn params_from(
         stitch_size,
     };
     Ok(params)
-}
-
-/// Knits `pattern` over `surface`. See the README for every argument.
-#[pyfunction]
-#[pyo3(signature = (
-    surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
-    stitch_size=None, fluffiness=0.5, ring_segments=6, samples_per_loop=16, tension=0.0,
-    kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
-    budget_bytes=None, measure_clearance=false
-))]
-#[allow(clippy::too_many_arguments)]
-fn knit(
-    py: Python<'_>,
-    surface: &Bound<'_, PyAny>,
-    pattern: &Bound<'_, PyPattern>,
-    courses: Option<i64>,
-    wales: Option<i64>,
-    gauge: Option<(f32, f32)>,
-    yarn_radius: Option<f32>,
-    stitch_size: Option<(f32, f32)>,
-    fluffiness: f32,
-    ring_segments: i64,
-    samples_per_loop: i64,
-    tension: f32,
-    kappa: f32,
-    seed: u64,
-    colors: Option<&Bound<'_, PyColorPattern>>,
-    color_image: Option<&Bound<'_, PyAny>>,
-    color_variation: f32,
-    threads: Option<i64>,
-    budget_bytes: Option<u64>,
-    measure_clearance: bool,
-) -> PyResult<PyKnitResult> {
-    let surf = AnySurface::from_py(surface)?;
-    let params = params_from(
-        courses,
-        wales,
-        gauge,
-        yarn_radius,
-        stitch_size,
-        fluffiness,
-        ring_segments,
-        samples_per_loop,
-        tension,
-        kappa,
-        seed,
-        colors,
-        color_image,
-        color_variation,
-        threads,
-        budget_bytes,
-        measure_clearance,
-    )?;
-    let pattern = pattern.get().inner.clone();
-    let out = guarded(py, move || core_knit(surf.as_dyn(), &pattern, &params))?;
-    to_result(py, out)
 }
 
 /// A knit bound to its surface's (u,v) layout: counts, yarn radius, stitch size, offsets,
@@ -822,7 +767,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyColorPattern>()?;
     m.add_class::<PyKnitResult>()?;
     m.add_class::<PyKnit>()?;
-    m.add_function(wrap_pyfunction!(knit, m)?)?;
     m.add_function(wrap_pyfunction!(measure_clearance, m)?)?;
     m.add_function(wrap_pyfunction!(_force_internal_error, m)?)?;
     pile::register(m)?;
