@@ -29,8 +29,7 @@ pub const DEFAULT_GAUGE: (f32, f32) = (20.0, 28.0);
 pub const DEFAULT_RADIUS_PER_STITCH_WIDTH: f32 = 0.1;
 /// Default yarn colour (linear RGB): a warm oatmeal wool.
 pub const DEFAULT_YARN_COLOR: [f32; 3] = [0.55, 0.42, 0.30];
-/// Most stitches along one direction.
-pub const MAX_STITCHES_PER_DIRECTION: usize = 1_000_000;
+pub use crate::gauge::MAX_STITCHES_PER_DIRECTION;
 
 /// An image sampled per stitch at the tile centre: `(u, v)` maps to pixel
 /// `(u * width, v * height)`, repeated; row 0 is the bottom row (Blender's pixel order).
@@ -262,27 +261,8 @@ fn validate(p: &KnitParams) -> Result<()> {
 
 /// Stitch counts from explicit counts or the gauge and the surface's extent.
 fn stitch_counts(surface: &dyn Surface, p: &KnitParams) -> Result<(usize, usize)> {
-    let (len_u, len_v) = surface.extent();
-    let (st, rows) = p.gauge.unwrap_or(DEFAULT_GAUGE);
-    let from_gauge = |len: f32, per10: f32, what: &str| -> Result<usize> {
-        let n = (len as f64 * per10 as f64 / 0.1).round();
-        if !n.is_finite() || n > MAX_STITCHES_PER_DIRECTION as f64 {
-            return Err(KnitError::Budget(format!(
-                "the gauge gives {n:.0} {what} (surface {len} long); at most \
-                 {MAX_STITCHES_PER_DIRECTION} are allowed: use a coarser gauge"
-            )));
-        }
-        Ok((n as usize).max(1))
-    };
-    let wales = match p.wales {
-        Some(n) => n,
-        None => from_gauge(len_u, st, "stitches per course")?,
-    };
-    let courses = match p.courses {
-        Some(n) => n,
-        None => from_gauge(len_v, rows, "rows")?,
-    };
-    Ok((courses, wales))
+    let gauge = p.gauge.unwrap_or(DEFAULT_GAUGE);
+    crate::gauge::stitch_counts(surface.extent(), gauge, p.courses, p.wales)
 }
 
 /// Knits `pattern` over `surface`: [`PreparedKnit::new`] then [`PreparedKnit::build`].

@@ -19,6 +19,7 @@
 
 pub mod budget;
 pub mod error;
+pub mod gauge;
 pub mod geometry;
 pub mod knit;
 pub mod lattice;

@@ -198,26 +198,8 @@ fn check_color(c: &[f32; 3]) -> Result<()> {
 
 /// Stitch counts from explicit counts or the gauge and the surface's extent.
 fn stitch_counts(len_u: f32, len_v: f32, p: &PileParams) -> Result<(usize, usize)> {
-    let (st, rows) = p.gauge.unwrap_or(DEFAULT_PLUSH_GAUGE);
-    let from_gauge = |len: f32, per10: f32, what: &str| -> Result<usize> {
-        let n = (len as f64 * per10 as f64 / 0.1).round();
-        if !n.is_finite() || n > MAX_STITCHES_PER_DIRECTION as f64 {
-            return Err(KnitError::Budget(format!(
-                "the gauge gives {n:.0} {what} (surface {len} long); at most \
-                 {MAX_STITCHES_PER_DIRECTION} are allowed: use a coarser gauge"
-            )));
-        }
-        Ok((n as usize).max(1))
-    };
-    let wales = match p.wales {
-        Some(n) => n,
-        None => from_gauge(len_u, st, "wales")?,
-    };
-    let courses = match p.courses {
-        Some(n) => n,
-        None => from_gauge(len_v, rows, "courses")?,
-    };
-    Ok((courses, wales))
+    let gauge = p.gauge.unwrap_or(DEFAULT_PLUSH_GAUGE);
+    crate::gauge::stitch_counts((len_u, len_v), gauge, p.courses, p.wales)
 }
 
 /// Unit fabric frame (x along u, y = z x x, z = normal) at a root, from a central difference
