@@ -28,6 +28,7 @@ pub mod output_buffer;
 pub mod parallel;
 pub mod pattern;
 pub mod pile;
+pub mod portable_math;
 pub mod skeleton;
 pub mod surface;
 

@@ -137,7 +137,10 @@ pub fn build_bundle(
     let r = settings.radius;
     let (cos, sin): (Vec<f32>, Vec<f32>) = (0..m)
         .map(|k| TAU * k as f32 / m as f32)
-        .map(|a| (a.cos(), a.sin()))
+        .map(|a| {
+            let (s, c) = crate::portable_math::sin_cos(a);
+            (c, s)
+        })
         .unzip();
 
     // Ring directions, kept for the apexes.

@@ -31,6 +31,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 use crate::error::{KnitError, Result};
+use crate::portable_math::sin_cos;
 
 /// The paper's sampling coefficients: k = 1, 2, 4, 8.
 pub const DEFAULT_SCALES: [usize; 4] = [1, 2, 4, 8];
@@ -178,8 +179,8 @@ pub fn base_angles(seed: u64, x: usize, y: usize, theta_max: f32) -> (f32, f32) 
 /// `(sin theta cos phi, sin theta sin phi, cos theta)`.
 #[inline]
 pub fn from_angles(theta: f32, phi: f32) -> Vec3 {
-    let (st, ct) = theta.sin_cos();
-    let (sp, cp) = phi.sin_cos();
+    let (st, ct) = sin_cos(theta);
+    let (sp, cp) = sin_cos(phi);
     Vec3::new(st * cp, st * sp, ct)
 }
 

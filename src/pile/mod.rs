@@ -117,7 +117,9 @@ impl Nominal {
     pub fn azimuth(&self) -> f32 {
         match *self {
             Nominal::Lean { azimuth, .. } => azimuth,
-            Nominal::Direction(d) if d.x != 0.0 || d.y != 0.0 => d.y.atan2(d.x),
+            Nominal::Direction(d) if d.x != 0.0 || d.y != 0.0 => {
+                crate::portable_math::atan2(d.y, d.x)
+            }
             Nominal::Direction(_) => DEFAULT_LEAN.1,
         }
     }

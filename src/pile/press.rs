@@ -15,6 +15,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::error::{KnitError, Result};
+use crate::portable_math::sin_cos;
 
 /// Elevation above the fabric plane of fully pressed pile: 0.12 rad (about 7 degrees).
 pub const PRESS_ELEVATION: f32 = 0.12;
@@ -78,8 +79,8 @@ impl PressMap {
 /// from the course direction x towards the wale direction y), [`PRESS_ELEVATION`] above the
 /// fabric plane.
 pub fn pressed_direction(azimuth: f32) -> Vec3 {
-    let (se, ce) = PRESS_ELEVATION.sin_cos();
-    let (sa, ca) = azimuth.sin_cos();
+    let (se, ce) = sin_cos(PRESS_ELEVATION);
+    let (sa, ca) = sin_cos(azimuth);
     Vec3::new(ce * ca, ce * sa, se)
 }
 
