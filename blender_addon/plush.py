@@ -734,6 +734,56 @@ def update_plush_view(
     return True
 
 
+def noise_image(
+    obj: bpy.types.Object, *, context: bpy.types.Context | None = None
+) -> bpy.types.Image:
+    """The plush's fractal-noise pile directions as the paper's image ((v + 1) / 2 as RGB, in
+    the noise frame: blue is along the nominal direction), in an image datablock named
+    "<object> Pile Noise" (made or overwritten), for the Image Editor."""
+    context = context or bpy.context
+    if not obj.knitwear_plush.is_plush:
+        raise knitwear.ParameterError(f"'{obj.name}' is not a plush")
+    rgb = _field(obj, context, None).field.noise_rgb
+    height, width = rgb.shape[:2]
+    name = f"{obj.name} Pile Noise"
+    image = bpy.data.images.get(name)
+    if image is None or tuple(image.size) != (width, height):
+        if image is not None:
+            bpy.data.images.remove(image)
+        image = bpy.data.images.new(name, width, height, float_buffer=True)
+    # The noise encodes directions, not colours: no colour management.
+    image.colorspace_settings.is_data = True
+    rgba = np.ones((height, width, 4), np.float32)
+    rgba[..., :3] = rgb
+    image.pixels.foreach_set(rgba.ravel())
+    image.update()
+    return image
+
+
+class OBJECT_OT_knitwear_plush_noise(bpy.types.Operator):
+    """Make an image of this plush's fractal-noise pile directions (open it in the Image
+    Editor)"""
+
+    bl_idname = "object.knitwear_plush_noise"
+    bl_label = "Show Pile Noise"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context: bpy.types.Context) -> bool:
+        obj = context.active_object
+        return obj is not None and obj.knitwear_plush.is_plush
+
+    def execute(self, context: bpy.types.Context) -> set[str]:
+        try:
+            image = noise_image(context.active_object, context=context)
+        except knitwear.KnitError as err:
+            self.report({"ERROR"}, str(err))
+            return {"CANCELLED"}
+        self.report({"INFO"}, f"Pile noise in image '{image.name}' ({image.size[0]}x"
+                    f"{image.size[1]})")
+        return {"FINISHED"}
+
+
 def plush_objects(scene: bpy.types.Scene) -> list[bpy.types.Object]:
     """The plush objects of ``scene`` that follow the camera."""
     return [
@@ -902,6 +952,7 @@ class VIEW3D_PT_knitwear_plush(bpy.types.Panel):
         layout.prop(stored, "source")
         layout.prop(stored, "follow_camera")
         layout.operator(OBJECT_OT_knitwear_plush_view.bl_idname, icon="VIEW_CAMERA")
+        layout.operator(OBJECT_OT_knitwear_plush_noise.bl_idname, icon="IMAGE_DATA")
         box = layout.column()
         box.label(text="Grown with (undo and redo the operator to change):")
         box.enabled = False
@@ -917,6 +968,7 @@ _CLASSES: tuple[type, ...] = (
     PlushSettings,
     OBJECT_OT_knitwear_plush,
     OBJECT_OT_knitwear_plush_view,
+    OBJECT_OT_knitwear_plush_noise,
     VIEW3D_PT_knitwear_plush,
 )
 _HANDLERS = (

@@ -370,3 +370,20 @@ def test_adaptive_slices_hide_more_background_at_grazing_views(
         f"vertical), horizontal only {background['horizontal only']:.1%}"
     )
     assert background["adaptive"] < background["horizontal only"]
+
+
+def test_the_pile_noise_is_an_image_a_user_can_open(plush: ModuleType) -> None:
+    obj = plush.knit_plush(nurbs_patch(), **SMALL, seed=4)
+    bpy.context.view_layer.objects.active = obj
+    assert bpy.ops.object.knitwear_plush_noise() == {"FINISHED"}
+    image = bpy.data.images[f"{obj.name} Pile Noise"]
+    width, height = image.size
+    pixels = np.empty(width * height * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    rgb = pixels.reshape(height, width, 4)[..., :3]
+    # (v + 1) / 2 of unit vectors within theta_max of +z: blue well above the middle, and the
+    # vectors it encodes are unit length.
+    v = 2 * rgb - 1
+    np.testing.assert_allclose(np.linalg.norm(v, axis=-1), 1.0, atol=1e-4)
+    assert (rgb[..., 2] > 0.5 + 0.5 * np.cos(np.radians(45))).all()
+    assert rgb[..., :2].std() > 0.01, "the noise is flat"
