@@ -164,6 +164,11 @@ pub struct KnitStats {
     pub stitches: usize,
     /// Stitches not built because part of them had no surface (outside every UV island).
     pub stitches_skipped: usize,
+    /// Built stitches whose normal offsets were clamped because the surface curves more
+    /// tightly there than the offsets reach (a thin tube, a sharp crease; see
+    /// [`crate::skeleton::curvature`]). Counted per build (the pose decides it), so 0 in
+    /// [`PreparedKnit::stats`].
+    pub stitches_clamped: usize,
     pub vertices: usize,
     pub triangles: usize,
     pub yarn_pieces: usize,
@@ -465,6 +470,7 @@ impl PreparedKnit {
         out.yarn_radius = self.radius;
         out.stats = KnitStats {
             seconds: start.elapsed().as_secs_f64(),
+            stitches_clamped: out.stats.stitches_clamped,
             ..self.stats.clone()
         };
         if self.params.measure_clearance {
@@ -514,17 +520,19 @@ impl PreparedKnit {
             normals: vec![Vec3::ZERO; n],
             owner: vec![0u32; n],
             lengths: self.samples.clone(),
+            clamped: 0,
         };
         {
             let pts = split_lengths(&mut c.points, &self.samples);
             let nrm = split_lengths(&mut c.normals, &self.samples);
             let own = split_lengths(&mut c.owner, &self.samples);
-            self.pieces
+            c.clamped = self
+                .pieces
                 .par_iter()
                 .zip(pts)
                 .zip(nrm)
                 .zip(own)
-                .for_each(|(((pc, a), b), o)| {
+                .map(|(((pc, a), b), o)| {
                     sample_piece(
                         surface,
                         &self.lattice,
@@ -535,8 +543,9 @@ impl PreparedKnit {
                         a,
                         b,
                         o,
-                    );
-                });
+                    )
+                })
+                .sum();
         }
         c
     }
@@ -644,6 +653,7 @@ impl PreparedKnit {
             .collect();
         out.yarn_course = self.pieces.iter().map(|pc| pc.course as i32).collect();
         out.yarn_closed = self.pieces.iter().map(|pc| pc.closed).collect();
+        out.stats.stitches_clamped = centrelines.clamped;
         Ok(out)
     }
 }
@@ -654,6 +664,8 @@ struct Centrelines {
     normals: Vec<Vec3>,
     owner: Vec<u32>,
     lengths: Vec<usize>,
+    /// Stitches whose offsets were clamped for curvature.
+    clamped: usize,
 }
 
 impl Centrelines {

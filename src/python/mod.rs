@@ -420,6 +420,7 @@ fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResult> {
     stats.set_item("wales", s.wales)?;
     stats.set_item("stitches", s.stitches)?;
     stats.set_item("stitches_skipped", s.stitches_skipped)?;
+    stats.set_item("stitches_clamped", s.stitches_clamped)?;
     stats.set_item("vertices", s.vertices)?;
     stats.set_item("triangles", s.triangles)?;
     stats.set_item("yarn_pieces", s.yarn_pieces)?;

@@ -8,6 +8,7 @@
 //! cut chords), and a deforming surface moves the yarn without rebuilding the skeleton. On a
 //! flat surface it is the paper's 3D spline exactly (cardinal splines are affine-invariant).
 
+pub mod curvature;
 mod key_points;
 mod offsets;
 mod spline;
@@ -185,6 +186,9 @@ pub fn piece_key_points(
 
 /// Fills one piece's centreline: 3D points, the surface normal under each, and each sample's
 /// stitch index within the piece. The three slices have `piece.sample_count()` elements.
+///
+/// Where the surface curves more tightly than a stitch's normal offsets reach, the offsets
+/// of that stitch are clamped ([`curvature`]); returns how many stitches were.
 #[allow(clippy::too_many_arguments)]
 pub fn sample_piece(
     surface: &dyn Surface,
@@ -196,8 +200,15 @@ pub fn sample_piece(
     points: &mut [Vec3],
     normals: &mut [Vec3],
     stitch_of_sample: &mut [u32],
-) {
-    let kp = piece_key_points(lattice, pattern, offsets, piece);
+) -> usize {
+    let mut kp = piece_key_points(lattice, pattern, offsets, piece);
+    let mut clamped = 0;
+    for (j, stitch) in kp.chunks_exact_mut(KEY_POINTS).enumerate() {
+        let wale = (piece.first_wale + j) % lattice.wales;
+        let centre = lattice.tile_center(piece.course, wale);
+        let radii = curvature::stitch_curvature_radii(surface, centre, lattice.tile);
+        clamped += usize::from(curvature::clamp_offsets(stitch, radii));
+    }
     // A closed course comes back to its start one domain width further on in u.
     let period = Vec3::new(lattice.tile.x * lattice.wales as f32, 0.0, 0.0);
     let spline = CardinalSpline {
@@ -221,4 +232,5 @@ pub fn sample_piece(
         *n = sp.normal;
         *owner = ((t / KEY_POINTS as f32) as usize).min(piece.stitches - 1) as u32;
     }
+    clamped
 }

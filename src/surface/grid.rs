@@ -52,8 +52,8 @@ impl GridSurface {
     /// of the nearest valid normals (nearest in grid steps). No normal is ever NaN.
     ///
     /// Errors ([`KnitError::Surface`]): fewer than 2 x 2 samples, buffer lengths that do not
-    /// match, a NaN or infinite value (named by its index), or a surface without area (zero
-    /// length along u or along v).
+    /// match, a NaN or infinite value or a position beyond [`super::MAX_COORDINATE`] (named
+    /// by its index), or a surface without area (zero length along u or along v).
     pub fn new(
         rows: usize,
         cols: usize,
@@ -80,14 +80,16 @@ impl GridSurface {
                 )));
             }
         }
-        for (name, buf) in [("position", positions), ("normal", normals)] {
-            if let Some(k) = buf.iter().position(|x| !x.is_finite()) {
-                let (i, j) = (k / 3 / cols, k / 3 % cols);
-                return Err(KnitError::Surface(format!(
-                    "{name} of grid sample (row {i}, column {j}) is {} (float index {k})",
-                    buf[k]
-                )));
-            }
+        let sample = |k: usize| format!("(row {}, column {})", k / 3 / cols, k / 3 % cols);
+        super::check_coordinates(positions, |k| {
+            format!("position of grid sample {}", sample(k))
+        })?;
+        if let Some(k) = normals.iter().position(|x| !x.is_finite()) {
+            return Err(KnitError::Surface(format!(
+                "normal of grid sample {} is {} (float index {k})",
+                sample(k),
+                normals[k]
+            )));
         }
 
         let point = |buf: &[f32], i: usize, j: usize| {

@@ -103,8 +103,8 @@ impl MeshSurface {
     /// point or a line).
     ///
     /// Errors ([`KnitError::Surface`]): lengths that do not match, an index out of range, a
-    /// NaN or infinite value (named by vertex or by triangle and corner), or no triangle with
-    /// UV area.
+    /// NaN or infinite value or a position or UV beyond [`super::MAX_COORDINATE`] (named by
+    /// vertex or by triangle and corner), or no triangle with UV area.
     pub fn new(positions: &[f32], normals: &[f32], triangles: &[u32], uvs: &[f32]) -> Result<Self> {
         let bad = |msg: String| Err(KnitError::Surface(msg));
         if positions.len() % 3 != 0 {
@@ -144,23 +144,17 @@ impl MeshSurface {
             ));
         }
         let n = positions.len() / 3;
-        for (name, buf) in [("position", positions), ("normal", normals)] {
-            if let Some(k) = buf.iter().position(|x| !x.is_finite()) {
-                return bad(format!(
-                    "{name} of vertex {} is {} (float index {k})",
-                    k / 3,
-                    buf[k]
-                ));
-            }
-        }
-        if let Some(k) = uvs.iter().position(|x| !x.is_finite()) {
+        super::check_coordinates(positions, |k| format!("position of vertex {}", k / 3))?;
+        if let Some(k) = normals.iter().position(|x| !x.is_finite()) {
             return bad(format!(
-                "UV of triangle {} corner {} is {} (float index {k})",
-                k / 6,
-                k / 2 % 3,
-                uvs[k]
+                "normal of vertex {} is {} (float index {k})",
+                k / 3,
+                normals[k]
             ));
         }
+        super::check_coordinates(uvs, |k| {
+            format!("UV of triangle {} corner {}", k / 6, k / 2 % 3)
+        })?;
         if let Some(k) = triangles.iter().position(|&i| i as usize >= n) {
             return bad(format!(
                 "triangle {} corner {} refers to vertex {}, but the mesh has {n} vertices",

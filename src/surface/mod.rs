@@ -17,6 +17,45 @@ pub use plane::PlaneSurface;
 
 use glam::{Vec2, Vec3};
 
+use crate::error::{KnitError, Result};
+
+/// Largest magnitude of a position coordinate or a UV a surface accepts. Beyond it, squared
+/// lengths (spline frames, clearance, the UV index) would overflow f32. It matters because
+/// Blender stores an infinite coordinate as the largest float (3.4e38) rather than infinity,
+/// so an "infinite" vertex arrives here as a huge finite one.
+pub const MAX_COORDINATE: f32 = 1e18;
+
+/// The first value of `buf` that is not finite or is beyond [`MAX_COORDINATE`], as its index
+/// and a description of what is wrong with it.
+pub(crate) fn first_bad_coordinate(buf: &[f32]) -> Option<(usize, String)> {
+    buf.iter().enumerate().find_map(|(k, &x)| {
+        if !x.is_finite() {
+            Some((k, format!("{x}")))
+        } else if x.abs() > MAX_COORDINATE {
+            Some((
+                k,
+                format!(
+                    "{x:e}, too large (coordinates must be within +-{MAX_COORDINATE:e}; \
+                     Blender stores an infinite coordinate as 3.4e38)"
+                ),
+            ))
+        } else {
+            None
+        }
+    })
+}
+
+/// [`first_bad_coordinate`] as a surface error, `describe(k)` naming float index `k`.
+pub(crate) fn check_coordinates(buf: &[f32], describe: impl Fn(usize) -> String) -> Result<()> {
+    match first_bad_coordinate(buf) {
+        Some((k, what)) => Err(KnitError::Surface(format!(
+            "{} is {what} (float index {k})",
+            describe(k)
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// A point of the surface: position (scene units) and unit normal, both in object space.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {
