@@ -41,6 +41,9 @@ class KnitOutcome:
     stitches: int
     triangles: int
     skipped_stitches: int
+    #: Stitches whose normal offsets were clamped where the surface curves more tightly than
+    #: the yarn stands off it (a thin tube, a sharp crease).
+    clamped_stitches: int
     #: Seconds from start to finished mesh, and inside the core alone.
     seconds: float
     core_seconds: float
@@ -236,6 +239,7 @@ def _outcome(
         stitches=stitches,
         triangles=len(result.triangles),
         skipped_stitches=skipped,
+        clamped_stitches=int(stats.get("stitches_clamped", 0)),
         seconds=time.perf_counter() - t_start,
         core_seconds=core_s,
         mesh_seconds=mesh_s,

@@ -36,8 +36,16 @@ def _summary(outcome: api.KnitOutcome) -> str:
         f"Knitted {outcome.stitches:,} stitches, {outcome.triangles:,} triangles "
         f"in {outcome.seconds:.2f} s"
     )
+    notes = []
     if outcome.skipped_stitches:
-        text += f" ({outcome.skipped_stitches:,} stitches outside the UV map skipped)"
+        notes.append(f"{outcome.skipped_stitches:,} stitches skipped: outside the UV map")
+    if outcome.clamped_stitches:
+        notes.append(
+            f"{outcome.clamped_stitches:,} stitches flattened: the surface curves more "
+            "tightly than the yarn stands off it"
+        )
+    if notes:
+        text += " (" + "; ".join(notes) + ")"
     return text
 
 

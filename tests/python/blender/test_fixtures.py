@@ -1,0 +1,135 @@
+"""Issue 4's fixtures in Blender: the sources that break knit-on-surface methods, as a user
+makes them, each with a defined outcome. Either a knit whose positions are all finite and
+whose report counts what was degraded, or an ERROR report naming the problem with the blend
+file left exactly as it was. A forced internal error reaches Python as `knitwear.InternalError`
+and Blender goes on working.
+"""
+
+import math
+from types import ModuleType
+
+import bpy
+import numpy as np
+import pytest
+from blender_scenes import SMALL, data_counts, positions, snapshot, uv_mesh
+
+
+def _blend_state(source: bpy.types.Object) -> tuple[dict[str, int], dict, str]:
+    return data_counts(), snapshot(source), bpy.context.active_object.name
+
+
+def _knit_ok(api: ModuleType, addon: ModuleType, source: bpy.types.Object, **settings):
+    outcome = api.knit(source, **(SMALL | settings))
+    mesh = outcome.object.data
+    assert len(mesh.vertices) > 0
+    assert np.isfinite(positions(mesh)).all()
+    summary = addon.operators._summary(outcome)
+    print(f"{source.name}: {summary}")
+    return outcome, summary
+
+
+def test_cube_six_uv_islands_skips_and_reports(api: ModuleType, addon: ModuleType) -> None:
+    # Blender's default cube: six UV islands in a cross, most of the UV square empty.
+    bpy.ops.mesh.primitive_cube_add(size=0.2)
+    outcome, summary = _knit_ok(api, addon, bpy.context.active_object, courses=24, wales=24)
+    assert outcome.skipped_stitches > 0
+    assert outcome.stitches + outcome.skipped_stitches == 24 * 24
+    assert f"{outcome.skipped_stitches:,} stitches skipped: outside the UV map" in summary
+
+
+def test_uv_sphere_poles(api: ModuleType, addon: ModuleType) -> None:
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12, radius=0.1)
+    outcome, _ = _knit_ok(api, addon, bpy.context.active_object, courses=20, wales=30)
+    # The pole fans leave UV gaps between their triangles: counted, not hidden.
+    assert outcome.stitches + outcome.skipped_stitches == 20 * 30
+    assert outcome.stitches > 0.8 * 20 * 30
+
+
+def test_thin_tube_is_flattened_and_reported(api: ModuleType, addon: ModuleType) -> None:
+    # A 2 mm tube knitted with two stitches round it and a thick yarn: offsets are clamped to
+    # its curvature and the report says how many stitches were.
+    bpy.ops.mesh.primitive_cylinder_add(
+        vertices=32, radius=0.002, depth=0.05, end_fill_type="NOTHING"
+    )
+    outcome, summary = _knit_ok(
+        api, addon, bpy.context.active_object, courses=8, wales=2, yarn_radius=0.0012
+    )
+    assert outcome.clamped_stitches > 0
+    assert f"{outcome.clamped_stitches:,} stitches flattened" in summary
+
+
+def test_zero_area_face_and_doubled_vertices(api: ModuleType, addon: ModuleType) -> None:
+    # A subdivided plane with one face collapsed to a point (its UVs keep their area), then
+    # every vertex doubled (split edges everywhere: a mesh never merged by distance). Neither
+    # changes which stitches are built (the add-on's irregularity may push a few border ones
+    # off the UV map: the same ones each time).
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=6, y_subdivisions=6, size=0.1)
+    obj = bpy.context.active_object
+    plain, _ = _knit_ok(api, addon, obj, courses=10, wales=10)
+    face = obj.data.polygons[14]
+    centre = tuple(face.center)
+    for v in face.vertices:
+        obj.data.vertices[v].co = centre
+    obj.data.update()
+    collapsed, _ = _knit_ok(api, addon, obj, courses=10, wales=10)
+    assert collapsed.stitches == plain.stitches
+    assert collapsed.stitches + collapsed.skipped_stitches == 100
+
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.mesh.select_all(action="SELECT")
+    bpy.ops.mesh.edge_split(type="EDGE")
+    bpy.ops.object.mode_set(mode="OBJECT")
+    assert len(obj.data.vertices) == 4 * len(obj.data.polygons)
+    split, _ = _knit_ok(api, addon, obj, courses=10, wales=10)
+    assert split.stitches == plain.stitches
+
+
+def test_infinite_vertex_is_refused_naming_the_vertex(api: ModuleType, core: ModuleType) -> None:
+    # Blender stores an infinite coordinate as the largest float (3.4e38): refused as too
+    # large, naming the vertex, before anything is created.
+    obj = uv_mesh()
+    obj.data.vertices[5].co = (0.0, math.inf, 0.0)
+    obj.data.update()
+    before = _blend_state(obj)
+    with pytest.raises(RuntimeError, match="position of vertex 5") as raised:
+        bpy.ops.object.knitwear_knit(**SMALL)
+    assert "too large" in str(raised.value)
+    assert _blend_state(obj) == before
+    with pytest.raises(core.SurfaceError, match="vertex 5"):
+        api.knit(obj, **SMALL)
+    assert _blend_state(obj) == before
+
+
+def test_absurd_settings_report_and_change_nothing(core: ModuleType) -> None:
+    obj = uv_mesh()
+    before = _blend_state(obj)
+    for settings, words in [
+        (SMALL | {"courses": 10**6, "wales": 10**6}, "stitches"),
+        (SMALL | {"yarn_radius": 1.0}, "thicker than a stitch"),
+    ]:
+        with pytest.raises(RuntimeError, match="Error") as raised:
+            bpy.ops.object.knitwear_knit(**settings)
+        assert words in str(raised.value)
+        assert _blend_state(obj) == before
+
+
+def test_forced_internal_error_in_blender(
+    api: ModuleType, core: ModuleType, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    with pytest.raises(core.InternalError, match="please report"):
+        core._core._force_internal_error()
+
+    # Through the operator: an ERROR report, nothing created, and Blender goes on.
+    source = uv_mesh()
+    before = _blend_state(source)
+
+    def broken_core(*_args: object, **_kwargs: object) -> None:
+        core._core._force_internal_error()
+
+    monkeypatch.setattr(api, "knit", broken_core)
+    with pytest.raises(RuntimeError, match="internal error"):
+        bpy.ops.object.knitwear_knit(**SMALL)
+    assert _blend_state(source) == before
+    monkeypatch.undo()
+    assert bpy.ops.object.knitwear_knit(**SMALL) == {"FINISHED"}
+    assert data_counts()["objects"] == before[0]["objects"] + 1
