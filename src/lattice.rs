@@ -166,6 +166,23 @@ impl Lattice {
         self.nodes[r * (self.wales + 1) + c]
     }
 
+    /// Keeps key points on the fabric across a non-cyclic v: into the v range the regular
+    /// lattice's sinkers and heads span (`ROW_OVERHANG` of a row beyond the first and last
+    /// courses, which is the domain's edge). Only a perturbed lattice needs it: its second and
+    /// second-to-last rows move, and a first-course sinker can then dip up to a tenth of a row
+    /// below the edge, where a UV island ends and the stitch would be lost. A no-op on a regular
+    /// lattice (bit for bit) and along a cyclic v.
+    pub fn keep_on_fabric(&self, points: &mut [Vec2]) {
+        if !self.perturbed || self.cyclic_v {
+            return;
+        }
+        let lo = self.origin.y - ROW_OVERHANG * self.tile.y;
+        let hi = self.origin.y + (self.courses as f32 + ROW_OVERHANG) * self.tile.y;
+        for p in points {
+            p.y = p.y.clamp(lo, hi);
+        }
+    }
+
     /// The corners of the tile of stitch (course, wale).
     pub fn tile(&self, course: usize, wale: usize) -> Tile {
         Tile {

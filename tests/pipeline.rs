@@ -441,6 +441,16 @@ fn irregularity_moves_stitches_and_keeps_the_yarn_apart() {
             }
         }
     }
+    // A perturbed edge row must not lose stitches off a UV island that ends at the edge.
+    for seed in 0..8 {
+        let p = KnitParams {
+            kappa: 0.02,
+            seed,
+            ..params()
+        };
+        let out = knit(&uv_mesh(), &StitchPattern::preset("seed").unwrap(), &p).unwrap();
+        assert_eq!(out.stats.stitches_skipped, 0, "seed {seed}");
+    }
     let p = KnitParams {
         kappa: 0.5,
         ..params()

@@ -81,7 +81,8 @@ pub fn built_stitches(surface: &dyn Surface, lattice: &Lattice) -> Vec<bool> {
         .enumerate()
         .for_each(|(r, row)| {
             for (w, b) in row.iter_mut().enumerate() {
-                let kp = key_points(&lattice.tile(r, w));
+                let mut kp = key_points(&lattice.tile(r, w));
+                lattice.keep_on_fabric(&mut kp);
                 *b = kp.iter().all(|uv| surface.eval(*uv).is_some());
             }
         });
@@ -175,6 +176,7 @@ pub fn piece_key_points(
         if left != this && below == this {
             kp[0] = boundary_sinker(&tile);
         }
+        lattice.keep_on_fabric(&mut kp);
         out.extend(
             kp.iter()
                 .zip(lambdas)
