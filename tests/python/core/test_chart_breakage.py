@@ -1,0 +1,72 @@
+"""scripts/chart_breakage.py (issue 4's charts of where knitting breaks) must not rot silently:
+a tiny sweep of each kind gives records with every field, and the refusal points are refused
+with the error classes the charts mark."""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+from pathlib import Path
+from types import ModuleType
+
+import pytest
+
+SCRIPT = Path(__file__).resolve().parents[3] / "scripts" / "chart_breakage.py"
+FIELDS = {"x", "error", "message", "clearance_min", "clearance_p01", "stitches",
+          "stitches_skipped", "stitches_clamped"}
+
+
+@pytest.fixture(scope="module")
+def charts() -> ModuleType:
+    spec = importlib.util.spec_from_file_location("chart_breakage", SCRIPT)
+    assert spec and spec.loader
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["chart_breakage"] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def check(recs: list[dict], n: int) -> None:
+    assert len(recs) == n
+    for r in recs:
+        assert FIELDS <= r.keys(), r
+        if r["error"] is None:
+            assert r["stitches"] > 0
+            assert 0 < r["clearance_min"] <= r["clearance_p01"]
+
+
+def test_curvature_clamps_on_a_thin_cylinder(charts: ModuleType) -> None:
+    recs = charts.sweep_curvature([0.2, 5.0], courses=4)
+    check(recs, 2)
+    assert recs[0]["error"] is None and recs[0]["stitches_clamped"] > 0
+    assert recs[1]["stitches_clamped"] == 0 and recs[1]["clearance_min"] > 1.0
+
+
+def test_kappa_beyond_the_maximum_is_refused(charts: ModuleType) -> None:
+    recs = charts.sweep_kappa([0.0, 0.02, 0.021], seeds=[0, 1])
+    check(recs, 6)
+    assert [r["error"] for r in recs] == [None] * 4 + ["ParameterError"] * 2
+    assert "kappa" in recs[-1]["message"]
+
+
+def test_stretch_refuses_fixed_counts_not_the_gauge(charts: ModuleType) -> None:
+    recs = charts.sweep_stretch([1.0, 30.0])
+    check(recs, 4)
+    by = {(r["x"], r["mode"]): r for r in recs}
+    assert by[(1.0, "counts")]["error"] is None
+    assert by[(30.0, "gauge")]["error"] is None
+    assert by[(30.0, "counts")]["error"] == "ParameterError"
+    assert "thicker than a stitch" in by[(30.0, "counts")]["message"]
+
+
+def test_yarn_thicker_than_a_stitch_is_refused(charts: ModuleType) -> None:
+    recs = charts.sweep_yarn([0.1, 0.55])
+    check(recs, 2)
+    assert recs[0]["error"] is None and recs[0]["clearance_min"] > 1.0
+    assert recs[1]["error"] == "ParameterError"
+
+
+def test_charts_are_drawn(charts: ModuleType, tmp_path: Path) -> None:
+    recs = charts.sweep_yarn([0.1, 0.3, 0.55])
+    charts.chart_yarn(recs, tmp_path / "yarn.png")
+    assert (tmp_path / "yarn.png").stat().st_size > 1000
