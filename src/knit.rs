@@ -17,7 +17,8 @@ use crate::output_buffer;
 use crate::parallel::{run_in_pool, split_lengths};
 use crate::pattern::{ColorPattern, StitchPattern};
 use crate::skeleton::{
-    built_stitches, sample_piece, tuning, yarn_pieces, NormalOffsets, SplineSampling, YarnPiece,
+    built_stitches, sample_piece, sample_piece_uv, tuning, yarn_pieces, NormalOffsets,
+    SplineSampling, YarnPiece,
 };
 use crate::surface::{Surface, UvRect};
 
@@ -562,16 +563,7 @@ impl PreparedKnit {
         let pc = self.pieces[i];
         let wales = self.lattice.wales;
         let owner_of = |k: usize| (pc.course, (pc.first_wale + owner[k] as usize) % wales);
-        let image = self.params.color_image.as_ref();
-        let lattice = &self.lattice;
-        let colors = self.params.colors.as_ref();
-        let color_of = |course: usize, wale: usize| -> [f32; 3] {
-            match (image, colors) {
-                (Some(img), _) => img.sample(lattice.tile_center(course, wale)),
-                (None, Some(c)) => c.color(course, wale),
-                (None, None) => DEFAULT_YARN_COLOR,
-            }
-        };
+        let color_of = |course: usize, wale: usize| self.stitch_color(course, wale);
         build_bundle(
             points,
             normals,
@@ -581,6 +573,68 @@ impl PreparedKnit {
             &self.bundle,
             bufs,
         );
+    }
+
+    /// The linear RGB colour of stitch (course, wale) before the random brightness
+    /// variation: from the colour image, else the colour pattern, else the default yarn.
+    pub fn stitch_color(&self, course: usize, wale: usize) -> [f32; 3] {
+        match (&self.params.color_image, &self.params.colors) {
+            (Some(img), _) => img.sample(self.lattice.tile_center(course, wale)),
+            (None, Some(c)) => c.color(course, wale),
+            (None, None) => DEFAULT_YARN_COLOR,
+        }
+    }
+
+    /// The settings this knit was prepared with.
+    pub fn params(&self) -> &KnitParams {
+        &self.params
+    }
+
+    /// The stitch lattice (perturbed by `kappa`), in the surface's (u,v) domain.
+    pub fn lattice(&self) -> &Lattice {
+        &self.lattice
+    }
+
+    /// The (u,v) domain the knit was prepared for.
+    pub fn domain(&self) -> UvRect {
+        self.domain
+    }
+
+    /// Every yarn piece's centreline in (u, v, lambda) (lambda: normal offset, scene units),
+    /// sampled exactly where [`build`](Self::build) samples it, before it is mapped onto the
+    /// surface. Runs in the caller's rayon pool.
+    pub fn uv_centrelines(&self, surface: &dyn Surface) -> Result<Vec<UvYarn>> {
+        self.check_layout(surface)?;
+        let wales = self.lattice.wales;
+        Ok(self
+            .pieces
+            .par_iter()
+            .zip(&self.samples)
+            .map(|(pc, &n)| {
+                let mut points = vec![Vec3::ZERO; n];
+                let mut owner = vec![0u32; n];
+                sample_piece_uv(
+                    surface,
+                    &self.lattice,
+                    &self.pattern,
+                    &self.offsets,
+                    &self.sampling,
+                    pc,
+                    &mut points,
+                    &mut owner,
+                );
+                let stitches = owner
+                    .iter()
+                    .map(|&o| (pc.course, (pc.first_wale + o as usize) % wales))
+                    .collect();
+                UvYarn {
+                    points,
+                    stitches,
+                    closed: pc.closed,
+                    period_u: self.lattice.tile.x * wales as f32,
+                }
+            })
+            .collect())
     }
 
     fn build_in_pool(&self, surface: &dyn Surface) -> Result<KnitOutput> {
@@ -656,6 +710,20 @@ impl PreparedKnit {
         out.stats.stitches_clamped = centrelines.clamped;
         Ok(out)
     }
+}
+
+/// One yarn piece's centreline in (u, v, lambda): see [`PreparedKnit::uv_centrelines`].
+#[derive(Debug, Clone)]
+pub struct UvYarn {
+    /// Samples in (u, v, lambda); u may run past the domain on a cyclic-u surface.
+    pub points: Vec<Vec3>,
+    /// (course, wale) of the stitch each sample belongs to.
+    pub stitches: Vec<(usize, usize)>,
+    /// A whole course round a cyclic-u surface: the last sample joins the first moved by
+    /// `period_u` along u.
+    pub closed: bool,
+    /// The domain's width in u (the period of a cyclic u).
+    pub period_u: f32,
 }
 
 /// Sampled centrelines of all pieces, concatenated.

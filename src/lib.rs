@@ -14,6 +14,7 @@
 //! | pile | [`pile`] | warp-knit plush: fractal-noise pile directions, view-dependent slices |
 //! | measure | [`metrics`] | clearance between yarns |
 //! | pipeline | [`knit`] | the whole path, budget checks, NumPy-ready buffers |
+//! | texture | [`texture`] | the knit drawn in (u,v) as an image: the cheap distant stand-in |
 //!
 //! The Python bindings live in `src/python/`, behind the `python` cargo feature.
 
@@ -31,6 +32,7 @@ pub mod pile;
 pub mod portable_math;
 pub mod skeleton;
 pub mod surface;
+pub mod texture;
 
 #[cfg(feature = "python")]
 mod python;

@@ -203,6 +203,66 @@ pub fn sample_piece(
     normals: &mut [Vec3],
     stitch_of_sample: &mut [u32],
 ) -> usize {
+    let mut out = points.iter_mut().zip(normals.iter_mut());
+    for_each_sample(
+        surface,
+        lattice,
+        pattern,
+        offsets,
+        sampling,
+        piece,
+        stitch_of_sample,
+        |q| {
+            let (p, n) = out.next().expect("one point per sample");
+            let sp = surface
+                .eval(Vec2::new(q.x, q.y))
+                .unwrap_or_else(|| surface.eval_nearest(Vec2::new(q.x, q.y)));
+            *p = sp.position + q.z * sp.normal;
+            *n = sp.normal;
+        },
+    )
+}
+
+/// Like [`sample_piece`], but the centreline before it is mapped onto the surface: each
+/// sample in (u, v, lambda) (lambda: the normal offset, scene units, after the same
+/// curvature clamping). The knitwear texture draws these.
+#[allow(clippy::too_many_arguments)]
+pub fn sample_piece_uv(
+    surface: &dyn Surface,
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    offsets: &NormalOffsets,
+    sampling: &SplineSampling,
+    piece: &YarnPiece,
+    uvl: &mut [Vec3],
+    stitch_of_sample: &mut [u32],
+) -> usize {
+    let mut out = uvl.iter_mut();
+    for_each_sample(
+        surface,
+        lattice,
+        pattern,
+        offsets,
+        sampling,
+        piece,
+        stitch_of_sample,
+        |q| *out.next().expect("one point per sample") = q,
+    )
+}
+
+/// The spline samples of a piece in (u, v, lambda), in order, to `emit`; writes each
+/// sample's stitch index within the piece. Returns the stitches whose offsets were clamped.
+#[allow(clippy::too_many_arguments)]
+fn for_each_sample(
+    surface: &dyn Surface,
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    offsets: &NormalOffsets,
+    sampling: &SplineSampling,
+    piece: &YarnPiece,
+    stitch_of_sample: &mut [u32],
+    mut emit: impl FnMut(Vec3),
+) -> usize {
     let mut kp = piece_key_points(lattice, pattern, offsets, piece);
     let mut clamped = 0;
     for (j, stitch) in kp.chunks_exact_mut(KEY_POINTS).enumerate() {
@@ -219,19 +279,9 @@ pub fn sample_piece(
         tension: sampling.tension,
         period,
     };
-    for (j, ((p, n), owner)) in points
-        .iter_mut()
-        .zip(normals.iter_mut())
-        .zip(stitch_of_sample.iter_mut())
-        .enumerate()
-    {
+    for (j, owner) in stitch_of_sample.iter_mut().enumerate() {
         let t = piece.sample_t(j, sampling.samples_per_loop);
-        let q = spline.eval(t);
-        let sp = surface
-            .eval(Vec2::new(q.x, q.y))
-            .unwrap_or_else(|| surface.eval_nearest(Vec2::new(q.x, q.y)));
-        *p = sp.position + q.z * sp.normal;
-        *n = sp.normal;
+        emit(spline.eval(t));
         *owner = ((t / KEY_POINTS as f32) as usize).min(piece.stitches - 1) as u32;
     }
     clamped
