@@ -36,6 +36,7 @@ from ._core import (
     SurfaceError,
     __version__,
     fractal_noise,
+    knit_texture,
     measure_clearance,
     plush,
 )
@@ -71,6 +72,7 @@ __all__ = [
     "__version__",
     "fractal_noise",
     "knit",
+    "knit_texture",
     "measure_clearance",
     "plush",
 ]

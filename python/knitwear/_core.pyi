@@ -56,6 +56,10 @@ class MeshSurface:
     ) -> None: ...
     @property
     def extent(self) -> tuple[float, float]: ...
+    @property
+    def domain(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """The UV map's bounding box ((u_min, v_min), (u_max, v_max)): what a knit and a
+        knit texture cover."""
 
 class Pattern:
     """A stitch pattern: a chart of knit and purl stitches, repeated over the surface."""
@@ -144,6 +148,35 @@ class Knit:
         """(width, height) of a stitch the loop shapes are tuned for, scene units."""
     @property
     def topology_key(self) -> int: ...
+
+def knit_texture(
+    surface: GridSurface | MeshSurface,
+    pattern: Pattern,
+    *,
+    width: int = 1024,
+    height: int = 1024,
+    courses: int | None = None,
+    wales: int | None = None,
+    gauge: tuple[float, float] | None = None,
+    yarn_radius: float | None = None,
+    stitch_size: tuple[float, float] | None = None,
+    fluffiness: float = 0.5,
+    ring_segments: int = 6,
+    samples_per_loop: int = 16,
+    tension: float = 0.0,
+    kappa: float = 0.0,
+    seed: int = 0,
+    colors: ColorPattern | None = None,
+    color_image: npt.NDArray[np.float32] | None = None,
+    color_variation: float = 0.15,
+    threads: int | None = None,
+    budget_bytes: int | None = None,
+    measure_clearance: bool = False,
+) -> npt.NDArray[np.float32]:
+    """The knitwear texture: (height, width, 4) float32 linear RGBA of the knit drawn over
+    the surface's (u,v) domain (a grid's [0, 1]^2, a mesh's `domain`), row 0 at the smallest
+    v, transparent where no yarn is. Same stitches, perturbation and colours as `Knit` with
+    the same settings."""
 
 def measure_clearance(result: KnitResult) -> tuple[float, float]:
     """(min, 1st percentile) centreline clearance in yarn diameters."""

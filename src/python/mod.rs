@@ -13,6 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 mod pile;
+mod texture;
 
 use crate::error::KnitError;
 use crate::knit::{ColorImage, KnitOutput, KnitParams, PreparedKnit};
@@ -269,6 +270,14 @@ impl PyMeshSurface {
     #[getter]
     fn extent(&self) -> (f32, f32) {
         self.inner.extent()
+    }
+
+    /// The (u,v) rectangle the stitches are laid over: the UV map's bounding box,
+    /// `((u_min, v_min), (u_max, v_max))`.
+    #[getter]
+    fn domain(&self) -> ((f32, f32), (f32, f32)) {
+        let d = self.inner.domain();
+        (d.min.into(), d.max.into())
     }
 }
 
@@ -771,5 +780,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(measure_clearance, m)?)?;
     m.add_function(wrap_pyfunction!(_force_internal_error, m)?)?;
     pile::register(m)?;
+    texture::register(m)?;
     Ok(())
 }
