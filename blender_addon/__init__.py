@@ -7,7 +7,7 @@ package this extension bundles as a wheel.
 
 import bpy
 
-from . import bake, follow, operators, panels, plush, properties
+from . import bake, follow, operators, panels, plush, properties, texture
 
 _CLASSES: tuple[type, ...] = (
     operators.OBJECT_OT_knitwear_knit,
@@ -25,9 +25,11 @@ def register() -> None:
     bpy.types.VIEW3D_MT_object.append(operators.draw_object_menu)
     follow.register()
     plush.register()
+    texture.register()
 
 
 def unregister() -> None:
+    texture.unregister()
     plush.unregister()
     follow.unregister()
     bpy.types.VIEW3D_MT_object.remove(operators.draw_object_menu)

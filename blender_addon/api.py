@@ -186,13 +186,26 @@ class Bound:
     samples: tuple[int, int]
 
 
-def _run_core(
+@dataclass(frozen=True)
+class CoreInputs:
+    """What the core is called with for a knit of a source: its surface, the pattern and the
+    keyword settings."""
+
+    sampled: sampling.Sampled
+    pattern: "knitwear.Pattern"
+    kwargs: dict[str, Any]
+    #: Grid samples the NURBS source was tessellated with, or None for a mesh.
+    min_samples: tuple[int, int] | None
+
+
+def core_inputs(
     source: bpy.types.Object,
     context: bpy.types.Context,
     settings: Mapping[str, Any],
-    progress: Progress | None,
-) -> tuple[sampling.Sampled, Any, Bound, float]:
-    """Everything that can fail, before any datablock is created."""
+    progress: Progress | None = None,
+) -> CoreInputs:
+    """Sample ``source`` and convert complete ``settings`` for the core, as a knit does (the
+    knitwear texture shares it). Creates nothing; raises `knitwear.KnitError`."""
     pattern = _pattern(settings)
     kwargs = core_settings(settings, context.scene)
     size = {k: kwargs[k] for k in ("gauge", "courses", "wales") if k in kwargs}
@@ -204,6 +217,23 @@ def _run_core(
     )
     if progress:
         progress(0.2)
+    return CoreInputs(sampled, pattern, kwargs, min_samples)
+
+
+def _run_core(
+    source: bpy.types.Object,
+    context: bpy.types.Context,
+    settings: Mapping[str, Any],
+    progress: Progress | None,
+) -> tuple[sampling.Sampled, Any, Bound, float]:
+    """Everything that can fail, before any datablock is created."""
+    inputs = core_inputs(source, context, settings, progress)
+    sampled, pattern, kwargs, min_samples = (
+        inputs.sampled,
+        inputs.pattern,
+        inputs.kwargs,
+        inputs.min_samples,
+    )
     t0 = time.perf_counter()
     knit = knitwear.Knit(sampled.surface, pattern, **kwargs)
     result = knit.build(sampled.surface)
