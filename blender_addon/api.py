@@ -29,6 +29,9 @@ from .properties import CUSTOM_PATTERN, KNIT_SETTINGS, MAX_COLORS
 #: Called with the fraction done (0..1) between the steps of a knit.
 Progress = Callable[[float], None]
 
+#: Yarns closer than this many diameters interpenetrate visibly (DESIGN.md section 7).
+MIN_CLEARANCE = 0.95
+
 #: The core reads a gauge as stitches per this many scene units (10 cm in metres).
 _GAUGE_LENGTH = 0.1
 
@@ -44,6 +47,9 @@ class KnitOutcome:
     #: Stitches whose normal offsets were clamped where the surface curves more tightly than
     #: the yarn stands off it (a thin tube, a sharp crease).
     clamped_stitches: int
+    #: The smallest distance between yarns the loop shapes reach on a flat patch, in yarn
+    #: diameters: below `MIN_CLEARANCE` the yarn is too thick for its stitch and loops overlap.
+    flat_clearance: float
     #: Seconds from start to finished mesh, and inside the core alone.
     seconds: float
     core_seconds: float
@@ -270,6 +276,7 @@ def _outcome(
         triangles=len(result.triangles),
         skipped_stitches=skipped,
         clamped_stitches=int(stats.get("stitches_clamped", 0)),
+        flat_clearance=float(stats.get("flat_clearance", 0.0)),
         seconds=time.perf_counter() - t_start,
         core_seconds=core_s,
         mesh_seconds=mesh_s,

@@ -44,9 +44,20 @@ def _summary(outcome: api.KnitOutcome) -> str:
             f"{outcome.clamped_stitches:,} stitches flattened: the surface curves more "
             "tightly than the yarn stands off it"
         )
+    if outcome.flat_clearance < api.MIN_CLEARANCE:
+        notes.append(
+            f"the yarn is too thick for its stitch: loops overlap (at best "
+            f"{outcome.flat_clearance:.2f} yarn diameters apart); use a thinner yarn or a "
+            "coarser gauge"
+        )
     if notes:
         text += " (" + "; ".join(notes) + ")"
     return text
+
+
+def _report_level(outcome: api.KnitOutcome) -> set[str]:
+    """A warning where the result is visibly wrong (overlapping loops), else information."""
+    return {"WARNING"} if outcome.flat_clearance < api.MIN_CLEARANCE else {"INFO"}
 
 
 def _make_active(context: bpy.types.Context, obj: bpy.types.Object) -> None:
@@ -98,7 +109,7 @@ class OBJECT_OT_knitwear_knit(KnitSettingsMixin, bpy.types.Operator):
         finally:
             progress.end()
         _make_active(context, outcome.object)
-        self.report({"INFO"}, _summary(outcome))
+        self.report(_report_level(outcome), _summary(outcome))
         return {"FINISHED"}
 
     def draw(self, _context: bpy.types.Context) -> None:
@@ -132,7 +143,7 @@ class OBJECT_OT_knitwear_update(bpy.types.Operator):
             return {"CANCELLED"}
         finally:
             progress.end()
-        self.report({"INFO"}, _summary(outcome))
+        self.report(_report_level(outcome), _summary(outcome))
         return {"FINISHED"}
 
 

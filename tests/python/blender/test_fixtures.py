@@ -11,7 +11,7 @@ from types import ModuleType
 import bpy
 import numpy as np
 import pytest
-from blender_scenes import SMALL, data_counts, positions, snapshot, uv_mesh
+from blender_scenes import SMALL, data_counts, nurbs_patch, positions, snapshot, uv_mesh
 
 
 def _blend_state(source: bpy.types.Object) -> tuple[dict[str, int], dict, str]:
@@ -134,3 +134,17 @@ def test_forced_internal_error_in_blender(
     monkeypatch.undo()
     assert bpy.ops.object.knitwear_knit(**SMALL) == {"FINISHED"}
     assert data_counts()["objects"] == before[0]["objects"] + 1
+
+
+def test_a_yarn_too_thick_for_its_stitch_is_a_warning(api: ModuleType, addon: ModuleType) -> None:
+    # The default yarn (a fifth of a stitch wide) clears; one 0.6 of a stitch wide still fits
+    # in a stitch (it is not refused) but its loops overlap: the user is warned, with the figure.
+    source = nurbs_patch()
+    thin, summary = _knit_ok(api, addon, source)
+    assert thin.flat_clearance >= 0.95 and "too thick" not in summary
+    assert addon.operators._report_level(thin) == {"INFO"}
+    stitch = api.knit_result(source, **SMALL).stats["stitch_width"]
+    thick, summary = _knit_ok(api, addon, source, yarn_radius=0.3 * stitch)
+    assert thick.flat_clearance < 0.95
+    assert "too thick for its stitch" in summary and f"{thick.flat_clearance:.2f}" in summary
+    assert addon.operators._report_level(thick) == {"WARNING"}
