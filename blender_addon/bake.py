@@ -70,9 +70,6 @@ def bake_animation(
         raise knitwear.ParameterError(f"empty frame range {frame_start}..{frame_end}")
     stored, path = _cache_path(obj, filepath)
     scene = context.scene
-    previous = obj.modifiers.get(CACHE_MODIFIER)
-    if previous is not None:
-        obj.modifiers.remove(previous)
     mesh = obj.data
     n = len(mesh.vertices)
     frame_before = scene.frame_current
@@ -86,8 +83,11 @@ def bake_animation(
     obj.knitwear.follow_source = False
     matrices = []
     path.parent.mkdir(parents=True, exist_ok=True)
+    # Written beside the target and moved over it at the end: a failed bake leaves an earlier
+    # cache (and its modifier) as they were.
+    partial = path.with_name(path.name + ".partial")
     try:
-        with path.open("wb") as handle:
+        with partial.open("wb") as handle:
             write_pc2_header(handle, n, frame_start, frame_end - frame_start + 1)
             for frame in range(frame_start, frame_end + 1):
                 scene.frame_set(frame)
@@ -96,13 +96,17 @@ def bake_animation(
                 handle.write(positions.astype("<f4", copy=False).tobytes())
                 matrices.append(obj.matrix_world.copy())
     except BaseException:
-        path.unlink(missing_ok=True)
+        partial.unlink(missing_ok=True)
         scene.frame_set(frame_before)
         mesh_build.write_positions(mesh, rest)
         obj.matrix_world = matrix_before
         obj.knitwear.follow_source = following
         raise
 
+    partial.replace(path)
+    previous = obj.modifiers.get(CACHE_MODIFIER)
+    if previous is not None:
+        obj.modifiers.remove(previous)
     modifier = obj.modifiers.new(CACHE_MODIFIER, "MESH_CACHE")
     modifier.cache_format = "PC2"
     modifier.filepath = stored

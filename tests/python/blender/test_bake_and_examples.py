@@ -11,6 +11,7 @@ from types import ModuleType
 
 import bpy
 import numpy as np
+import pytest
 from blender_scenes import SMALL, positions
 from conftest import ROOT, _extension_zip
 from test_follow import waving_cloth
@@ -123,3 +124,26 @@ def test_the_contact_sheet_example_renders_every_pattern_and_colourway(tmp_path:
     assert tiles == {f"{p}_{c}.png" for p in ("seed", "garter") for c in ("nordic", "sea")}
     sheet = Image.open(tmp_path / "contact_sheet.png")
     assert sheet.size == (160 + 2 * 64, 24 + 2 * 48)
+
+
+def test_a_failed_bake_keeps_the_earlier_cache(
+    api: ModuleType, addon: ModuleType, tmp_path: Path
+) -> None:
+    scene = bpy.context.scene
+    source = waving_cloth()
+    knit = api.knit_object(source, **SMALL)
+    scene.frame_end = 4
+    cache = tmp_path / "knit.pc2"
+    addon.bake.bake_animation(knit, frame_start=1, frame_end=4, filepath=str(cache))
+    before = cache.read_bytes()
+    knit.knitwear.follow_source = True
+    bpy.data.objects.remove(source)  # now the knit cannot follow: the bake must fail
+    # knitwear is importable only once the extension is installed (the `addon` fixture).
+    import knitwear
+
+    with pytest.raises(knitwear.KnitError):
+        addon.bake.bake_animation(knit, frame_start=1, frame_end=4, filepath=str(cache))
+    assert cache.read_bytes() == before
+    assert not cache.with_name("knit.pc2.partial").exists()
+    assert [m.type for m in knit.modifiers].count("MESH_CACHE") == 1
+    assert knit.knitwear.follow_source
