@@ -387,3 +387,29 @@ def test_the_pile_noise_is_an_image_a_user_can_open(plush: ModuleType) -> None:
     np.testing.assert_allclose(np.linalg.norm(v, axis=-1), 1.0, atol=1e-4)
     assert (rgb[..., 2] > 0.5 + 0.5 * np.cos(np.radians(45))).all()
     assert rgb[..., :2].std() > 0.01, "the noise is flat"
+
+
+def test_cycles_renders_the_plush_in_its_colour(plush: ModuleType, tmp_path: Path) -> None:
+    source = nurbs_patch()
+    source.hide_render = True
+    plush.knit_plush(source, **SMALL, color_1=(0.6, 0.02, 0.02))
+    add_camera((0.0, -0.4, 2.5))
+    scene = bpy.context.scene
+    world = bpy.data.worlds.new("White")
+    world.color = (1.0, 1.0, 1.0)
+    scene.world = world
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = 4
+    scene.cycles.use_denoising = False
+    scene.render.resolution_x = scene.render.resolution_y = 48
+    scene.render.film_transparent = True
+    scene.view_settings.view_transform = "Standard"
+    scene.render.filepath = str(tmp_path / "plush_cycles.png")
+    bpy.ops.render.render(write_still=True)
+    pixels = np.asarray(Image.open(tmp_path / "plush_cycles.png").convert("RGBA"), np.float32)
+    alpha = pixels[..., 3] / 255
+    covered = alpha > 0.5
+    assert covered.mean() > 0.1, f"the plush covers only {covered.mean():.0%} of the frame"
+    r, g, b = np.median(pixels[covered][:, :3], axis=0)
+    assert r > 3 * max(g, b), f"median colour {(r, g, b)}"
