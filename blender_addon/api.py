@@ -73,7 +73,12 @@ def _chart_text(text: str) -> str:
 
 def _pattern(settings: Mapping[str, Any]) -> "knitwear.Pattern":
     if settings["pattern"] == CUSTOM_PATTERN:
-        return knitwear.Pattern.from_chart(_chart_text(settings["pattern_chart"]))
+        text = settings["pattern_chart"]
+        # Knitspeak uses ';' inside its rows, so it is read as written; a chart's rows may be
+        # separated with ';' in the one-line field.
+        if knitwear.Pattern.looks_like_knitspeak(text):
+            return knitwear.Pattern.from_knitspeak(text)
+        return knitwear.Pattern.from_chart(_chart_text(text))
     return knitwear.Pattern.preset(settings["pattern"])
 
 

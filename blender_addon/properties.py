@@ -111,7 +111,9 @@ class KnitSettingsMixin:
         name="Chart",
         description="Custom stitch chart, used when Pattern is Custom Chart. One line per row "
         "(top line = top row); rows may also be separated with ';'. "
-        "k = knit, p = purl (also | v for knit, - . o for purl)",
+        "k = knit, p = purl (also | v for knit, - . o for purl). Or Knitspeak row "
+        "instructions of knit and purl repeats: 'Row 1 (RS): *k2, p2; rep from *. Row 2: "
+        "*p2, k2; rep from *.'",
         default="kkpp;kkpp;pppp;kkkk",
     )
     # -- Size

@@ -7,10 +7,12 @@
 
 mod chart;
 mod color;
+mod knitspeak;
 mod presets;
 
 pub use chart::parse_chart;
 pub use color::ColorPattern;
+pub use knitspeak::{looks_like_knitspeak, parse_knitspeak};
 pub use presets::PRESETS;
 
 use crate::error::{KnitError, Result};
@@ -84,6 +86,11 @@ impl StitchPattern {
     /// Parses a text chart (see [`parse_chart`] for the symbols).
     pub fn from_chart(text: &str) -> Result<Self> {
         parse_chart(text)
+    }
+
+    /// Parses Knitspeak row instructions (see [`parse_knitspeak`] for what is supported).
+    pub fn from_knitspeak(text: &str) -> Result<Self> {
+        parse_knitspeak(text)
     }
 
     /// A named preset (case, spaces and hyphens are ignored: "Rib 2x2" finds `rib_2x2`).

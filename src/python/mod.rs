@@ -303,6 +303,18 @@ impl PyPattern {
             .map(|inner| Self { inner })
             .map_err(to_py)
     }
+    /// Knitspeak row instructions ("Row 1 (RS): *k2, p2; rep from *."), knit and purl repeats.
+    #[staticmethod]
+    fn from_knitspeak(text: &str) -> PyResult<Self> {
+        StitchPattern::from_knitspeak(text)
+            .map(|inner| Self { inner })
+            .map_err(to_py)
+    }
+    /// Whether `text` reads as Knitspeak (starts with a row header) rather than a chart.
+    #[staticmethod]
+    fn looks_like_knitspeak(text: &str) -> bool {
+        crate::pattern::looks_like_knitspeak(text)
+    }
     #[staticmethod]
     fn presets() -> Vec<&'static str> {
         StitchPattern::presets()

@@ -237,3 +237,15 @@ def test_poll(api: ModuleType) -> None:
     bpy.context.view_layer.objects.active = knit
     assert not bpy.ops.object.knitwear_knit.poll(), "a knit is not a source"
     assert bpy.ops.object.knitwear_update.poll()
+
+
+def test_knitspeak_in_the_chart_field_knits_like_the_preset(api: ModuleType) -> None:
+    source = nurbs_patch()
+    preset = api.knit_result(source, **SMALL, pattern="rib_2x2")
+    text = "Row 1 (RS): *K2, p2; rep from *. Row 2: *K2, p2; rep from *."
+    written = api.knit_result(source, **SMALL, pattern="CUSTOM", pattern_chart=text)
+    np.testing.assert_array_equal(written.vertices, preset.vertices)
+    import knitwear
+
+    with pytest.raises(knitwear.PatternError, match="c4f"):
+        api.knit_result(source, **SMALL, pattern="CUSTOM", pattern_chart="Row 1: k2, c4f.")
