@@ -37,9 +37,9 @@ pub fn parse_chart(text: &str) -> Result<StitchPattern> {
             .enumerate()
         {
             let stitch = if KNIT_SYMBOLS.contains(&ch) {
-                Stitch::Knit
+                Stitch::KNIT
             } else if PURL_SYMBOLS.contains(&ch) {
-                Stitch::Purl
+                Stitch::PURL
             } else {
                 return Err(KnitError::Pattern(format!(
                     "row {row_number}, column {}: unknown symbol {ch:?}; use k (knit) or p (purl)",

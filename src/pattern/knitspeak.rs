@@ -123,9 +123,9 @@ pub fn looks_like_knitspeak(text: &str) -> bool {
 fn from_the_back(unit: &[Stitch]) -> Vec<Stitch> {
     unit.iter()
         .rev()
-        .map(|s| match s {
-            Stitch::Knit => Stitch::Purl,
-            Stitch::Purl => Stitch::Knit,
+        .map(|s| match s.face {
+            super::Face::Knit => Stitch::PURL,
+            super::Face::Purl => Stitch::KNIT,
         })
         .collect()
 }
@@ -247,8 +247,8 @@ fn bad_header(header: &str) -> KnitError {
 fn parse_body(body: &str, what: &str) -> Result<Vec<Stitch>> {
     let b = body.trim().trim_end_matches('.').trim();
     match b.to_lowercase().as_str() {
-        "knit" | "k all sts" | "knit all sts" => return Ok(vec![Stitch::Knit]),
-        "purl" | "p all sts" | "purl all sts" => return Ok(vec![Stitch::Purl]),
+        "knit" | "k all sts" | "knit all sts" => return Ok(vec![Stitch::KNIT]),
+        "purl" | "p all sts" | "purl all sts" => return Ok(vec![Stitch::PURL]),
         _ => {}
     }
     let mut unit = Vec::new();
@@ -320,8 +320,8 @@ fn parse_body(body: &str, what: &str) -> Result<Vec<Stitch>> {
 /// `k`, `k2`, `p`, `p12` (lower case): the stitch and how many.
 fn stitch_token(t: &str) -> Option<(Stitch, usize)> {
     let kind = match t.chars().next()? {
-        'k' => Stitch::Knit,
-        'p' => Stitch::Purl,
+        'k' => Stitch::KNIT,
+        'p' => Stitch::PURL,
         _ => return None,
     };
     let digits = t[1..].trim();

@@ -7,43 +7,21 @@
 
 mod chart;
 mod color;
+pub mod instruction;
 mod knitspeak;
 mod presets;
+pub mod rows;
+mod stitch;
 
 pub use chart::parse_chart;
 pub use color::ColorPattern;
 pub use knitspeak::{looks_like_knitspeak, parse_knitspeak};
+pub use instruction::Instruction;
 pub use presets::PRESETS;
+pub use rows::WrittenRow;
+pub use stitch::{Face, Form, Stitch};
 
 use crate::error::{KnitError, Result};
-
-/// A stitch as it shows on the right side (front) of the fabric.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Stitch {
-    /// A knit stitch: its loop was pulled through the loop below from back to front, so its
-    /// legs show as a V on the front and the head of the loop below lies behind them.
-    Knit,
-    /// A purl stitch: the reverse, pulled from front to back; its head shows as a bump.
-    Purl,
-}
-
-impl Stitch {
-    /// +1 for knit, -1 for purl: the side (along the surface normal) on which this stitch's
-    /// legs pass the head of the loop below.
-    pub fn side(self) -> f32 {
-        match self {
-            Stitch::Knit => 1.0,
-            Stitch::Purl => -1.0,
-        }
-    }
-
-    pub fn symbol(self) -> char {
-        match self {
-            Stitch::Knit => 'k',
-            Stitch::Purl => 'p',
-        }
-    }
-}
 
 /// A stitch pattern: a `width x height` chart repeated over the fabric in both directions.
 /// Invariant: `width >= 1`, `height >= 1`, `cells.len() == width * height`; row 0 is the
@@ -81,6 +59,12 @@ impl StitchPattern {
             height,
             cells: rows_bottom_up.into_iter().flatten().collect(),
         })
+    }
+
+    /// Builds a pattern from rows as written (instructions in working order, right or wrong
+    /// side), checking that stitch counts balance (see [`rows`]).
+    pub fn from_written_rows(name: &str, rows: &[WrittenRow]) -> Result<Self> {
+        Self::from_rows(name, rows::cells_from_rows(rows)?)
     }
 
     /// Parses a text chart (see [`parse_chart`] for the symbols).

@@ -1,0 +1,256 @@
+//! What a knitter does at one point of a row: an instruction consumes some loops of the row
+//! below (stitches-in) and makes some stitches (stitches-out).
+//!
+//! Each instruction is described as it is worked from the right side; [`Instruction::worked`]
+//! gives its stitches and loops in right-side chart order (left to right as seen from the
+//! front). A wrong-side row mirrors them (see [`super::rows`]).
+
+use super::stitch::{Face, Form};
+
+/// One knitting instruction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Instruction {
+    Knit,
+    Purl,
+    /// `k tbl`
+    KnitTbl,
+    /// `p tbl`
+    PurlTbl,
+    /// `sl1 wyib` / `sl1 wyif`: slipped purlwise with the yarn in back or in front.
+    Slip { yarn_front: bool },
+    /// `yo`
+    YarnOver,
+    /// `m1l`
+    MakeOneLeft,
+    /// `m1r`
+    MakeOneRight,
+    /// `k2tog`: right-leaning; the left loop lies on top.
+    K2tog,
+    /// `ssk`: left-leaning; the right loop lies on top.
+    Ssk,
+    /// `p2tog`
+    P2tog,
+    /// `ssp`
+    Ssp,
+    /// `k3tog`: right-leaning double decrease.
+    K3tog,
+    /// `sssk`: left-leaning double decrease.
+    Sssk,
+    /// `sl1-k2tog-psso` (`sk2p`): left-leaning double decrease, the slipped (right) loop on top.
+    Sk2p,
+    /// `cdd` (`sl2-k1-p2sso`, `s2kp`): centred double decrease, the centre loop on top.
+    Cdd,
+    /// `MB`: make a bobble.
+    Bobble,
+    /// A cable or twist `m/n RC`, `m/n LC`, `m/n RPC`, `m/n LPC` (`1/1 RT` is `1/1 RC`, `C4B`
+    /// is `2/2 RC`, `C4F` is `2/2 LC`): `m` stitches travel in front of `n`, to the right
+    /// (`left == false`) or to the left. `purl_back`: the `n` stitches that pass behind are
+    /// purled (the `P` of `RPC`).
+    Cross {
+        m: u8,
+        n: u8,
+        left: bool,
+        purl_back: bool,
+    },
+}
+
+/// A stitch made by an instruction, in right-side order within the instruction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MadeStitch {
+    pub face: Face,
+    pub form: Form,
+    /// First loop (index into the instruction's loops-in, right-side order) pulled through.
+    pub first_source: usize,
+    /// Loops pulled through (0 for a yarn-over or a made stitch).
+    pub sources: usize,
+}
+
+/// Where a loop of the row below goes: which made stitch (index within the instruction) is
+/// pulled through it, and on which side it passes the loops it crosses (+1 front, -1 back).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LoopFate {
+    pub made_by: usize,
+    pub layer: i8,
+}
+
+/// An instruction's effect, right-side order.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Worked {
+    pub made: Vec<MadeStitch>,
+    pub loops: Vec<LoopFate>,
+}
+
+/// Largest stitch count on either side of a cross.
+pub const MAX_CROSS_SIDE: u8 = 6;
+
+impl Instruction {
+    /// Loops of the row below it works.
+    pub fn stitches_in(self) -> usize {
+        match self {
+            Self::YarnOver | Self::MakeOneLeft | Self::MakeOneRight => 0,
+            Self::K2tog | Self::Ssk | Self::P2tog | Self::Ssp => 2,
+            Self::K3tog | Self::Sssk | Self::Sk2p | Self::Cdd => 3,
+            Self::Cross { m, n, .. } => usize::from(m) + usize::from(n),
+            _ => 1,
+        }
+    }
+
+    /// Stitches it makes.
+    pub fn stitches_out(self) -> usize {
+        match self {
+            Self::Cross { m, n, .. } => usize::from(m) + usize::from(n),
+            _ => 1,
+        }
+    }
+
+    /// The Knitspeak name, as stitch-maps writes it.
+    pub fn name(self) -> String {
+        match self {
+            Self::Knit => "k".into(),
+            Self::Purl => "p".into(),
+            Self::KnitTbl => "k tbl".into(),
+            Self::PurlTbl => "p tbl".into(),
+            Self::Slip { yarn_front: false } => "sl1 wyib".into(),
+            Self::Slip { yarn_front: true } => "sl1 wyif".into(),
+            Self::YarnOver => "yo".into(),
+            Self::MakeOneLeft => "m1l".into(),
+            Self::MakeOneRight => "m1r".into(),
+            Self::K2tog => "k2tog".into(),
+            Self::Ssk => "ssk".into(),
+            Self::P2tog => "p2tog".into(),
+            Self::Ssp => "ssp".into(),
+            Self::K3tog => "k3tog".into(),
+            Self::Sssk => "sssk".into(),
+            Self::Sk2p => "sl1-k2tog-psso".into(),
+            Self::Cdd => "cdd".into(),
+            Self::Bobble => "MB".into(),
+            Self::Cross {
+                m,
+                n,
+                left,
+                purl_back,
+            } => format!(
+                "{m}/{n} {}{}C",
+                if left { "L" } else { "R" },
+                if purl_back { "P" } else { "" }
+            ),
+        }
+    }
+
+    /// What it does, in right-side order (left to right as seen from the front).
+    pub fn worked(self) -> Worked {
+        let one = |face, form| Worked {
+            made: vec![MadeStitch {
+                face,
+                form,
+                first_source: 0,
+                sources: 1,
+            }],
+            loops: vec![LoopFate {
+                made_by: 0,
+                layer: 0,
+            }],
+        };
+        let new_loop = |form| Worked {
+            made: vec![MadeStitch {
+                face: Face::Knit,
+                form,
+                first_source: 0,
+                sources: 0,
+            }],
+            loops: vec![],
+        };
+        // A decrease: one stitch through all loops, `layers` front-to-back order per loop.
+        let gather = |face, layers: &[i8]| Worked {
+            made: vec![MadeStitch {
+                face,
+                form: Form::Plain,
+                first_source: 0,
+                sources: layers.len(),
+            }],
+            loops: layers
+                .iter()
+                .map(|&layer| LoopFate { made_by: 0, layer })
+                .collect(),
+        };
+        match self {
+            Self::Knit => one(Face::Knit, Form::Plain),
+            Self::Purl => one(Face::Purl, Form::Plain),
+            Self::KnitTbl => one(Face::Knit, Form::Twisted),
+            Self::PurlTbl => one(Face::Purl, Form::Twisted),
+            Self::Slip { yarn_front } => one(Face::Knit, Form::Slip { yarn_front }),
+            Self::Bobble => one(Face::Knit, Form::Bobble),
+            Self::YarnOver => new_loop(Form::YarnOver),
+            Self::MakeOneLeft | Self::MakeOneRight => new_loop(Form::MakeOne),
+            // Right-leaning: the left loop on top.
+            Self::K2tog => gather(Face::Knit, &[1, -1]),
+            Self::P2tog => gather(Face::Purl, &[1, -1]),
+            Self::K3tog => gather(Face::Knit, &[1, 0, -1]),
+            // Left-leaning: the right loop on top.
+            Self::Ssk => gather(Face::Knit, &[-1, 1]),
+            Self::Ssp => gather(Face::Purl, &[-1, 1]),
+            Self::Sssk => gather(Face::Knit, &[-1, 0, 1]),
+            // The slipped right loop passed over the k2tog of the other two.
+            Self::Sk2p => gather(Face::Knit, &[0, -1, 1]),
+            // The centre loop on top of the two passed over it.
+            Self::Cdd => gather(Face::Knit, &[0, 1, -1]),
+            Self::Cross {
+                m,
+                n,
+                left,
+                purl_back,
+            } => cross(usize::from(m), usize::from(n), left, purl_back),
+        }
+    }
+}
+
+/// `m/n RC` (`left == false`): slip `n` to a cable needle held in back, knit `m`, then the `n`
+/// from the cable needle; the `m` loops travel right, in front. `m/n LC`: slip `m` held in
+/// front, work `n`, knit the `m`; the `m` loops travel left, in front. The row is worked right
+/// to left, so the loops worked first land furthest right.
+fn cross(m: usize, n: usize, left: bool, purl_back: bool) -> Worked {
+    let back_face = if purl_back { Face::Purl } else { Face::Knit };
+    let total = m + n;
+    let mut made = vec![
+        MadeStitch {
+            face: Face::Knit,
+            form: Form::Plain,
+            first_source: 0,
+            sources: 1,
+        };
+        total
+    ];
+    let mut loops = vec![
+        LoopFate {
+            made_by: 0,
+            layer: 0
+        };
+        total
+    ];
+    let mut link = |from: usize, to: usize, front: bool| {
+        made[to].first_source = from;
+        made[to].face = if front { Face::Knit } else { back_face };
+        loops[from] = LoopFate {
+            made_by: to,
+            layer: if front { 1 } else { -1 },
+        };
+    };
+    if left {
+        // Loops n..n+m (front) land at 0..m; loops 0..n (back) at m..m+n.
+        for i in 0..m {
+            link(n + i, i, true);
+        }
+        for j in 0..n {
+            link(j, m + j, false);
+        }
+    } else {
+        // Loops 0..m (front) land at n..n+m; loops m..m+n (back) at 0..n.
+        for i in 0..m {
+            link(i, n + i, true);
+        }
+        for j in 0..n {
+            link(m + j, j, false);
+        }
+    }
+    Worked { made, loops }
+}
