@@ -7,9 +7,11 @@ use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 use crate::budget::{self, OutputSize};
+use crate::detail::{piece_spans, stitch_levels, DetailParams, Level, LevelSettings, Span};
 use crate::error::{KnitError, Result};
 use crate::geometry::{
-    build_bundle, bundle_counts, BundleCounts, BundleSettings, PieceBuffers, TopologyBuffers,
+    build_bundle, bundle_counts, BundleCounts, BundleSettings, EndTangents, PieceBuffers,
+    TopologyBuffers,
 };
 use crate::lattice::{Lattice, ROW_OVERHANG};
 use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
@@ -130,6 +132,9 @@ pub struct KnitParams {
     pub budget_bytes: u64,
     /// Also measure the clearance of the result (costs about as much as the knit itself).
     pub measure_clearance: bool,
+    /// Camera-driven level of detail and culling ([`crate::detail`]). Default: `None`, every
+    /// stitch at full quality.
+    pub detail: Option<DetailParams>,
 }
 
 impl Default for KnitParams {
@@ -152,6 +157,7 @@ impl Default for KnitParams {
             threads: None,
             budget_bytes: budget::DEFAULT_BUDGET_BYTES,
             measure_clearance: false,
+            detail: None,
         }
     }
 }
@@ -188,6 +194,12 @@ pub struct KnitStats {
     /// whether they are closed, and the ring segments; never on positions or random choices
     /// (each triangle owns its apex vertex, so the random apex picks move vertices only).
     pub topology_key: u64,
+    /// Stitches at each [`Level`] (full, mid, far, texture, culled), of the `stitches` that
+    /// have a surface. Without camera-driven detail all are full.
+    pub levels: [usize; 5],
+    /// Triangles the same knit has with every stitch at full quality (equal to `triangles`
+    /// without camera-driven detail).
+    pub triangles_full_detail: usize,
 }
 
 /// A knit, in flat buffers.
@@ -236,6 +248,9 @@ fn validate(p: &KnitParams) -> Result<()> {
     check_range("samples per loop", p.samples_per_loop, 6, 256)?;
     check_range("spline tension", p.tension, 0.0, 0.99)?;
     check_range("colour variation", p.color_variation, 0.0, 1.0)?;
+    if let Some(d) = &p.detail {
+        d.validate()?;
+    }
     for (name, n) in [("courses", p.courses), ("wales", p.wales)] {
         if let Some(n) = n {
             check_range(name, n, 1, MAX_STITCHES_PER_DIRECTION)?;
@@ -299,10 +314,19 @@ pub struct PreparedKnit {
     pieces: Vec<YarnPiece>,
     offsets: NormalOffsets,
     sampling: SplineSampling,
-    bundle: BundleSettings,
-    /// Centreline samples per piece.
+    /// Centreline samples per piece (full density).
     samples: Vec<usize>,
+    /// First sample of each piece in the concatenated centrelines.
+    piece_start: Vec<usize>,
+    /// The bundles built: one per piece without camera-driven detail, one per run of
+    /// stitches of one level with it.
+    spans: Vec<Span>,
+    /// Bundle settings of the full, mid and far levels.
+    level_bundle: [BundleSettings; 3],
+    /// Element counts per span.
     counts: Vec<BundleCounts>,
+    /// Level of every stitch (row-major), with camera-driven detail.
+    levels: Option<Vec<Level>>,
     total: OutputSize,
     /// The (u,v) layout the knit was prepared for.
     domain: UvRect,
@@ -379,16 +403,80 @@ impl PreparedKnit {
             color_variation: p.color_variation,
             seed: p.seed,
         };
-        let (pieces, built_count) = run_in_pool(p.threads, || {
+        // Full-detail pieces first: their triangles are the figure detail is measured against.
+        let (full_pieces, built, built_count) = run_in_pool(p.threads, || {
             let built = built_stitches(surface, &lattice);
             let count = built.iter().filter(|b| **b).count();
-            (yarn_pieces(&lattice, &built), count)
+            (yarn_pieces(&lattice, &built), built, count)
         })?;
-        let samples: Vec<usize> = pieces.iter().map(|pc| pc.sample_count(s)).collect();
-        let counts: Vec<BundleCounts> = pieces
+        let triangles_full_detail: usize = full_pieces
             .iter()
-            .zip(&samples)
-            .map(|(pc, &n)| bundle_counts(n, m, pc.closed))
+            .map(|pc| bundle_counts(pc.sample_count(s), m, pc.closed).triangles)
+            .sum();
+        let full = LevelSettings {
+            samples_per_loop: s,
+            ring_segments: m,
+            fluffiness: p.fluffiness,
+        };
+        let (pieces, levels, spans) = match &p.detail {
+            None => {
+                let spans = full_pieces
+                    .iter()
+                    .enumerate()
+                    .map(|(i, pc)| whole_piece_span(i, pc, s))
+                    .collect();
+                (full_pieces, None, spans)
+            }
+            Some(d) => run_in_pool(p.threads, || -> Result<_> {
+                // The yarn stands off the surface by its offsets (at most about a diameter)
+                // plus its radius and fluff.
+                let reach = radius * (3.0 + p.fluffiness);
+                let levels = stitch_levels(surface, &lattice, &built, d, reach)?;
+                let kept: Vec<bool> = levels.iter().map(|l| l.is_built()).collect();
+                let pieces = yarn_pieces(&lattice, &kept);
+                let spl = |level: Level| d.level_settings(level, full).samples_per_loop;
+                let spans: Vec<Span> = pieces
+                    .par_iter()
+                    .enumerate()
+                    .map(|(i, pc)| {
+                        let runs = level_runs(
+                            surface, &lattice, pattern, &offsets, &sampling, pc, &levels, s,
+                        );
+                        piece_spans(i, pc.sample_count(s), pc.closed, &runs, s, spl)
+                    })
+                    .flatten()
+                    .collect();
+                Ok((pieces, Some(levels), spans))
+            })??,
+        };
+        let samples: Vec<usize> = pieces.iter().map(|pc| pc.sample_count(s)).collect();
+        let piece_start: Vec<usize> = samples
+            .iter()
+            .scan(0usize, |acc, &n| {
+                *acc += n;
+                Some(*acc - n)
+            })
+            .collect();
+        let level_bundle = [Level::Full, Level::Mid, Level::Far].map(|level| {
+            let q = p
+                .detail
+                .as_ref()
+                .map_or(full, |d| d.level_settings(level, full));
+            BundleSettings {
+                ring_segments: q.ring_segments,
+                fluffiness: q.fluffiness,
+                ..bundle
+            }
+        });
+        let counts: Vec<BundleCounts> = spans
+            .iter()
+            .map(|sp| {
+                bundle_counts(
+                    sp.rings,
+                    level_bundle[sp.level as usize].ring_segments,
+                    sp.closed,
+                )
+            })
             .collect();
         let total = OutputSize {
             vertices: counts.iter().map(|c| c.vertices as u64).sum(),
@@ -396,9 +484,22 @@ impl PreparedKnit {
             edges: counts.iter().map(|c| c.edges as u64).sum(),
             samples: samples.iter().map(|&n| n as u64).sum(),
         };
-        let built: u64 = pieces.iter().map(|pc| pc.stitches as u64).sum();
-        budget::check(&total, p.budget_bytes, built)?;
+        let built_yarn: u64 = pieces.iter().map(|pc| pc.stitches as u64).sum();
+        budget::check(&total, p.budget_bytes, built_yarn)?;
 
+        let mut level_counts = [0usize; 5];
+        match &levels {
+            None => level_counts[0] = built_count,
+            Some(levels) => {
+                for (l, b) in levels.iter().zip(&built) {
+                    level_counts[*l as usize] += usize::from(*b);
+                }
+            }
+        }
+        let topology_key = match &levels {
+            None => topology_key(m, &pieces, &samples),
+            Some(_) => detail_topology_key(&spans, &level_bundle),
+        };
         let stats = KnitStats {
             courses,
             wales,
@@ -410,7 +511,9 @@ impl PreparedKnit {
             stitch_width,
             stitch_height,
             flat_clearance,
-            topology_key: topology_key(m, &pieces, &samples),
+            topology_key,
+            levels: level_counts,
+            triangles_full_detail,
             ..Default::default()
         };
         Ok(Self {
@@ -420,9 +523,12 @@ impl PreparedKnit {
             pieces,
             offsets,
             sampling,
-            bundle,
             samples,
+            piece_start,
+            spans,
+            level_bundle,
             counts,
+            levels,
             total,
             domain,
             cyclic,
@@ -503,13 +609,10 @@ impl PreparedKnit {
                     .map(|c| 3 * c.vertices)
                     .collect::<Vec<_>>(),
             );
-            pos.into_par_iter()
-                .zip(centrelines.par_pieces())
-                .enumerate()
-                .for_each(|(i, (positions, (a, b, c)))| {
-                    let mut bufs = PieceBuffers::positions_only(positions);
-                    self.bundle_piece(i, a, b, c, &mut bufs);
-                });
+            pos.into_par_iter().enumerate().for_each(|(k, positions)| {
+                let mut bufs = PieceBuffers::positions_only(positions);
+                self.bundle_span(k, &centrelines, &mut bufs);
+            });
         })
     }
 
@@ -520,7 +623,6 @@ impl PreparedKnit {
             points: vec![Vec3::ZERO; n],
             normals: vec![Vec3::ZERO; n],
             owner: vec![0u32; n],
-            lengths: self.samples.clone(),
             clamped: 0,
         };
         {
@@ -551,27 +653,59 @@ impl PreparedKnit {
         c
     }
 
-    /// Sweeps piece `i`'s bundle into `bufs` (whatever parts of the output they hold).
-    fn bundle_piece(
-        &self,
-        i: usize,
-        points: &[Vec3],
-        normals: &[Vec3],
-        owner: &[u32],
-        bufs: &mut PieceBuffers,
-    ) {
-        let pc = self.pieces[i];
+    /// Sweeps span `k`'s bundle into `bufs` (whatever parts of the output they hold).
+    fn bundle_span(&self, k: usize, cl: &Centrelines, bufs: &mut PieceBuffers) {
+        let sp = self.spans[k];
+        let pc = self.pieces[sp.piece];
+        let n = self.samples[sp.piece];
+        let base = self.piece_start[sp.piece];
+        let points = &cl.points[base..base + n];
+        let normals = &cl.normals[base..base + n];
+        let owner = &cl.owner[base..base + n];
         let wales = self.lattice.wales;
-        let owner_of = |k: usize| (pc.course, (pc.first_wale + owner[k] as usize) % wales);
         let color_of = |course: usize, wale: usize| self.stitch_color(course, wale);
+        let settings = &self.level_bundle[sp.level as usize];
+        let whole = sp.first == 0 && sp.rings == n && (sp.closed || sp.last + 1 == n);
+        if whole {
+            // Every sample: the piece's own slices, exactly as without detail.
+            let owner_of = |i: usize| (pc.course, (pc.first_wale + owner[i] as usize) % wales);
+            build_bundle(
+                points,
+                normals,
+                &owner_of,
+                &color_of,
+                sp.closed,
+                EndTangents::default(),
+                settings,
+                bufs,
+            );
+            return;
+        }
+        let idx: Vec<usize> = (0..sp.rings).map(|i| sp.sample(i, n)).collect();
+        let pts: Vec<Vec3> = idx.iter().map(|&i| points[i]).collect();
+        let nrm: Vec<Vec3> = idx.iter().map(|&i| normals[i]).collect();
+        let own: Vec<u32> = idx.iter().map(|&i| owner[i]).collect();
+        let owner_of = |i: usize| (pc.course, (pc.first_wale + own[i] as usize) % wales);
+        // Where the span meets another one, its end ring takes the full-density tangent so
+        // both spans put the shared ring in the same plane.
+        let tangent_at = |i: usize| -> Option<Vec3> {
+            let inner = i > 0 && i + 1 < n;
+            if pc.closed || inner {
+                Some(points[(i + 1) % n] - points[(i + n - 1) % n])
+            } else {
+                None
+            }
+        };
+        let ends = if sp.closed {
+            EndTangents::default()
+        } else {
+            EndTangents {
+                first: tangent_at(idx[0]),
+                last: tangent_at(idx[sp.rings - 1]),
+            }
+        };
         build_bundle(
-            points,
-            normals,
-            &owner_of,
-            &color_of,
-            pc.closed,
-            &self.bundle,
-            bufs,
+            &pts, &nrm, &owner_of, &color_of, sp.closed, ends, settings, bufs,
         );
     }
 
@@ -583,6 +717,23 @@ impl PreparedKnit {
             (None, Some(c)) => c.color(course, wale),
             (None, None) => DEFAULT_YARN_COLOR,
         }
+    }
+
+    /// The level of every stitch (row-major, course by wale: `courses * wales`) with
+    /// camera-driven detail; `None` without (every stitch full). Stitches with no surface
+    /// under them are [`Level::Culled`].
+    pub fn stitch_levels(&self) -> Option<&[Level]> {
+        self.levels.as_deref()
+    }
+
+    /// The bundles built, in output order: which piece, which samples, which level.
+    pub fn spans(&self) -> &[Span] {
+        &self.spans
+    }
+
+    /// Ring segments of a built level.
+    pub fn ring_segments(&self, level: Level) -> usize {
+        self.level_bundle[(level as usize).min(2)].ring_segments
     }
 
     /// The settings this knit was prepared with.
@@ -675,10 +826,9 @@ impl PreparedKnit {
             .zip(tri)
             .zip(ced)
             .zip(edg)
-            .zip(centrelines.par_pieces())
             .enumerate()
             .for_each(
-                |(i, (((((positions, colors), corner_verts), corner_edges), edge_verts), cl))| {
+                |(i, ((((positions, colors), corner_verts), corner_edges), edge_verts))| {
                     let mut bufs = PieceBuffers {
                         vertex_base: vbase[i],
                         edge_base: ebase[i],
@@ -690,7 +840,7 @@ impl PreparedKnit {
                             edge_verts,
                         }),
                     };
-                    self.bundle_piece(i, cl.0, cl.1, cl.2, &mut bufs);
+                    self.bundle_span(i, &centrelines, &mut bufs);
                 },
             );
 
@@ -731,31 +881,8 @@ struct Centrelines {
     points: Vec<Vec3>,
     normals: Vec<Vec3>,
     owner: Vec<u32>,
-    lengths: Vec<usize>,
     /// Stitches whose offsets were clamped for curvature.
     clamped: usize,
-}
-
-impl Centrelines {
-    /// `(points, normals, owner)` of each piece, as a parallel iterator.
-    fn par_pieces(&self) -> impl IndexedParallelIterator<Item = (&[Vec3], &[Vec3], &[u32])> {
-        let mut at = 0;
-        let ranges: Vec<_> = self
-            .lengths
-            .iter()
-            .map(|&n| {
-                at += n;
-                at - n..at
-            })
-            .collect();
-        ranges.into_par_iter().map(move |r| {
-            (
-                &self.points[r.clone()],
-                &self.normals[r.clone()],
-                &self.owner[r],
-            )
-        })
-    }
 }
 
 /// Clearance (min, p01) of a finished knit, in yarn diameters.
@@ -789,6 +916,74 @@ fn topology_key(ring_segments: usize, pieces: &[YarnPiece], samples: &[usize]) -
         h = mix(h, ((n as u64) << 1) | pc.closed as u64);
     }
     h
+}
+
+/// The topology key with camera-driven detail: the spans' ring counts, closure and ring
+/// segments (see [`KnitStats::topology_key`]).
+fn detail_topology_key(spans: &[Span], level_bundle: &[BundleSettings; 3]) -> u64 {
+    let mix = |h: u64, x: u64| crate::geometry::stitch_seed(h, x as usize, 0x4c4f_4421);
+    let mut h = mix(0x6b6e_6974_6465_7461, spans.len() as u64);
+    for sp in spans {
+        let m = level_bundle[sp.level as usize].ring_segments as u64;
+        h = mix(h, ((sp.rings as u64) << 8) | (m << 1) | sp.closed as u64);
+    }
+    h
+}
+
+/// A whole piece as one full-quality span.
+fn whole_piece_span(i: usize, pc: &YarnPiece, samples_per_loop: usize) -> Span {
+    let n = pc.sample_count(samples_per_loop);
+    Span {
+        piece: i,
+        first: 0,
+        last: if pc.closed { n } else { n.saturating_sub(1) },
+        rings: n,
+        closed: pc.closed,
+        level: Level::Full,
+    }
+}
+
+/// The runs of one level along a piece: `(first sample, level)` in yarn order, a new run
+/// where the owning stitch's level changes (at the first sample of that stitch, where the
+/// two spans will share a ring). A closed piece of one level gives one run at sample 0.
+#[allow(clippy::too_many_arguments)]
+fn level_runs(
+    surface: &dyn Surface,
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    offsets: &NormalOffsets,
+    sampling: &SplineSampling,
+    pc: &YarnPiece,
+    levels: &[Level],
+    samples_per_loop: usize,
+) -> Vec<(usize, Level)> {
+    let wales = lattice.wales;
+    let level_of = |j: usize| levels[pc.course * wales + (pc.first_wale + j) % wales];
+    let first = level_of(0);
+    if (1..pc.stitches).all(|j| level_of(j) == first) {
+        return vec![(0, first)];
+    }
+    // Which stitch each sample belongs to, as the build samples it.
+    let n = pc.sample_count(samples_per_loop);
+    let mut uvl = vec![Vec3::ZERO; n];
+    let mut owner = vec![0u32; n];
+    sample_piece_uv(
+        surface, lattice, pattern, offsets, sampling, pc, &mut uvl, &mut owner,
+    );
+    let level_at = |k: usize| level_of(owner[k] as usize);
+    let mut runs = Vec::new();
+    for k in 0..n {
+        let here = level_at(k);
+        let starts = if k == 0 {
+            !pc.closed || level_at(n - 1) != here
+        } else {
+            level_at(k - 1) != here
+        };
+        if starts {
+            runs.push((k, here));
+        }
+    }
+    runs
 }
 
 fn vec3_slice(v: &[f32]) -> &[Vec3] {

@@ -13,12 +13,14 @@
 //! | geometry | [`geometry`] | fluffy triangle bundles swept along the centrelines |
 //! | pile | [`pile`] | warp-knit plush: fractal-noise pile directions, view-dependent slices |
 //! | measure | [`metrics`] | clearance between yarns |
+//! | detail | [`detail`] | camera-driven level of detail and culling: what each stitch needs |
 //! | pipeline | [`knit`] | the whole path, budget checks, NumPy-ready buffers |
 //! | texture | [`texture`] | the knit drawn in (u,v) as an image: the cheap distant stand-in |
 //!
 //! The Python bindings live in `src/python/`, behind the `python` cargo feature.
 
 pub mod budget;
+pub mod detail;
 pub mod error;
 pub mod gauge;
 pub mod geometry;

@@ -118,7 +118,13 @@ pub fn knit_texture(
             params.budget_bytes >> 20
         )));
     }
-    let prepared = PreparedKnit::new(surface, pattern, params)?;
+    // The texture draws every stitch: camera-driven detail (which leaves distant stitches to
+    // this very texture) does not apply.
+    let all = KnitParams {
+        detail: None,
+        ..params.clone()
+    };
+    let prepared = PreparedKnit::new(surface, pattern, &all)?;
     run_in_pool(params.threads, || {
         let yarns = prepared.uv_centrelines(surface)?;
         Ok(render(&prepared, surface, &yarns, width, height))

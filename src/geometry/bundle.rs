@@ -26,7 +26,7 @@ use glam::Vec3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::frames::ring_frame;
+use super::frames::{frame_from_tangent, ring_frame};
 
 /// Settings of the swept yarn.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -116,17 +116,29 @@ pub fn stitch_seed(seed: u64, course: usize, wale: usize) -> u64 {
     z ^ (z >> 31)
 }
 
+/// Tangent directions (any length) for the first and last ring of a bundle, where the
+/// bundle is one span of a longer yarn and its end rings must lie in the planes the
+/// neighbouring spans give them. `None`: from the bundle's own samples.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EndTangents {
+    pub first: Option<Vec3>,
+    pub last: Option<Vec3>,
+}
+
 /// Builds the bundle of one yarn piece into `out`.
 ///
 /// `points`/`normals`: the centreline and the surface normal under each sample; `owner[i]`:
 /// (course, wale) of the stitch that sample `i` belongs to; `color_of(course, wale)`: the
-/// stitch's linear RGB colour.
+/// stitch's linear RGB colour; `ends`: tangents for the end rings of a span (see
+/// [`EndTangents`]; the default for a whole piece).
+#[allow(clippy::too_many_arguments)]
 pub fn build_bundle(
     points: &[Vec3],
     normals: &[Vec3],
     owner: &dyn Fn(usize) -> (usize, usize),
     color_of: &dyn Fn(usize, usize) -> [f32; 3],
     closed: bool,
+    ends: EndTangents,
     settings: &BundleSettings,
     out: &mut PieceBuffers,
 ) {
@@ -146,7 +158,15 @@ pub fn build_bundle(
     // Ring directions, kept for the apexes.
     let mut dirs = vec![Vec3::ZERO; rings * m];
     for i in 0..rings {
-        let (_, a, b) = ring_frame(points, normals, i, closed);
+        let tangent = match i {
+            0 => ends.first,
+            _ if i + 1 == rings => ends.last,
+            _ => None,
+        };
+        let (_, a, b) = match tangent {
+            Some(t) => frame_from_tangent(t, normals[i]),
+            None => ring_frame(points, normals, i, closed),
+        };
         for k in 0..m {
             let d = cos[k] * a + sin[k] * b;
             dirs[i * m + k] = d;
@@ -270,6 +290,7 @@ mod tests {
             &|i| (0, i / 16),
             &|_, _| [0.5, 0.5, 0.5],
             false,
+            EndTangents::default(),
             &settings,
             &mut bufs,
         );

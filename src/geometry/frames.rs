@@ -26,8 +26,16 @@ pub fn ring_frame(points: &[Vec3], normals: &[Vec3], i: usize, closed: bool) -> 
     } else {
         points[i]
     };
-    let t = (next - prev).try_normalize().unwrap_or(Vec3::X);
-    let nrm = normals[i];
+    frame_from_tangent(next - prev, normals[i])
+}
+
+/// The ring frame for a tangent direction `tangent` (any length) and the surface normal
+/// `nrm` under the sample: see [`ring_frame`], which this is with the tangent taken from the
+/// neighbouring samples. A yarn built in spans at different densities (camera-driven detail)
+/// gives the rings where two spans meet the tangent of the full-density centreline, so both
+/// spans put that ring in the same plane.
+pub fn frame_from_tangent(tangent: Vec3, nrm: Vec3) -> (Vec3, Vec3, Vec3) {
+    let t = tangent.try_normalize().unwrap_or(Vec3::X);
     let a = (nrm - nrm.dot(t) * t)
         .try_normalize()
         .unwrap_or_else(|| t.any_orthonormal_vector());

@@ -4,7 +4,7 @@ mod bundle;
 mod frames;
 
 pub use bundle::{
-    build_bundle, bundle_counts, stitch_seed, BundleCounts, BundleSettings, PieceBuffers,
-    TopologyBuffers,
+    build_bundle, bundle_counts, stitch_seed, BundleCounts, BundleSettings, EndTangents,
+    PieceBuffers, TopologyBuffers,
 };
-pub use frames::ring_frame;
+pub use frames::{frame_from_tangent, ring_frame};

@@ -1,0 +1,521 @@
+//! Camera-driven level of detail and culling (issue 7): model no more of a knit than the
+//! scene's camera can see.
+//!
+//! Each built stitch gets a [`Level`] from its projected size in pixels, the largest over
+//! every camera view given (several views cover an animation's frame range: a stitch is
+//! modelled as finely as the closest frame needs, so its level never changes during the
+//! animation and nothing pops):
+//!
+//! | level | when (stitch size on screen) | what is built |
+//! |---|---|---|
+//! | [`Level::Full`] | `>= full_px` | the user's samples per loop, ring segments and fluff |
+//! | [`Level::Mid`] | `>= mid_px` | [`LevelQuality`] `mid`: fewer samples and segments |
+//! | [`Level::Far`] | `>= texture_px` | `far`: a plain tube (no fluff), 3 segments |
+//! | [`Level::Texture`] | `< texture_px` | nothing: the source wears the knitwear texture |
+//! | [`Level::Culled`] | outside every view's frustum (with margin), or facing away from every view on a closed surface | nothing |
+//!
+//! The projected size of a stitch is the largest of the screen lengths of its tile's width
+//! vector, height vector, and one stitch width along the surface normal, all placed at the
+//! tile centre: it shrinks with distance but not with foreshortening (a yarn seen at a
+//! grazing angle is as thick on screen as one seen face on).
+//!
+//! Levels never crack the yarn: a course is sampled once at full density and each run of
+//! stitches of one level (a span) keeps a subset of those samples, the two spans on either
+//! side of a level change sharing the sample at the stitch boundary. The centreline is the
+//! same spline at every level.
+
+use glam::{Mat4, Vec2, Vec3, Vec4, Vec4Swizzles};
+use rayon::prelude::*;
+
+use crate::error::{KnitError, Result};
+use crate::lattice::Lattice;
+use crate::surface::Surface;
+
+/// How finely a stitch is modelled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[repr(u8)]
+pub enum Level {
+    Full = 0,
+    Mid = 1,
+    Far = 2,
+    /// Below a few pixels: not built; the knitwear texture on the source stands in.
+    Texture = 3,
+    /// Not visible from any view: not built.
+    Culled = 4,
+}
+
+impl Level {
+    /// Every level, finest first (the order of [`crate::knit::KnitStats::levels`]).
+    pub const ALL: [Level; 5] = [
+        Level::Full,
+        Level::Mid,
+        Level::Far,
+        Level::Texture,
+        Level::Culled,
+    ];
+
+    /// Whether stitches of this level get yarn geometry.
+    pub fn is_built(self) -> bool {
+        self <= Level::Far
+    }
+
+    /// Lower-case name ("full", "mid", "far", "texture", "culled").
+    pub fn name(self) -> &'static str {
+        match self {
+            Level::Full => "full",
+            Level::Mid => "mid",
+            Level::Far => "far",
+            Level::Texture => "texture",
+            Level::Culled => "culled",
+        }
+    }
+}
+
+/// One camera view of the surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraView {
+    /// Clip space from the surface's object space (scene units): `projection * view *
+    /// world_from_object`, OpenGL conventions (a point is in the frame when
+    /// `-w <= x, y <= w`, in front of the camera when `w > 0`).
+    pub clip_from_object: Mat4,
+    /// The eye in the surface's object space: `(position, 1)` for a perspective camera,
+    /// `(unit direction towards the camera, 0)` for an orthographic one.
+    pub eye: Vec4,
+}
+
+/// Ring segments, samples per loop and fluff of a coarser level.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LevelQuality {
+    /// Centreline samples per stitch (6..=256); never more than the full level's.
+    pub samples_per_loop: usize,
+    /// Points per ring (3..=64); never more than the full level's.
+    pub ring_segments: usize,
+    /// Keep the user's fluffiness (false: a plain tube).
+    pub fluff: bool,
+}
+
+/// Camera-driven detail settings. Default thresholds sit at the knee of the speed-accuracy
+/// chart (`scripts/chart_speed_accuracy.py`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DetailParams {
+    /// The views to model for, at least one (an animated camera: one per frame, or a sample
+    /// of its frames).
+    pub views: Vec<CameraView>,
+    /// Render resolution, pixels (width, height).
+    pub resolution: (u32, u32),
+    /// Stitches at least this many pixels across are built at full quality. Default: 24.
+    pub full_px: f32,
+    /// Stitches at least this many pixels across are built at `mid` quality. Default: 10.
+    pub mid_px: f32,
+    /// Stitches smaller than this many pixels are left to the knitwear texture. Default: 2.
+    pub texture_px: f32,
+    /// Quality of [`Level::Mid`]. `None`: half the samples (at least 6) and two thirds of the
+    /// ring segments (at least 3), fluff kept.
+    pub mid: Option<LevelQuality>,
+    /// Quality of [`Level::Far`]. `None`: 6 samples, 3 segments, no fluff.
+    pub far: Option<LevelQuality>,
+    /// Frustum margin: the frame is widened by this fraction of its half-width and
+    /// half-height on every side before culling. Default: 0.1. Negative: no frustum culling.
+    pub frustum_margin: f32,
+    /// Cull stitches that face away from every view. Only right for a closed surface, whose
+    /// front hides its back. Default: false.
+    pub cull_back_faces: bool,
+    /// Levels fixed in advance (row-major, `courses * wales`), e.g. those of an earlier
+    /// knit of the same layout: the views are then not needed. An animated knit pins the
+    /// levels chosen when it was knitted, so every frame (and a farm machine that opens the
+    /// file at any frame) rebuilds the same topology.
+    pub pinned: Option<Vec<Level>>,
+}
+
+impl Default for DetailParams {
+    fn default() -> Self {
+        Self {
+            views: Vec::new(),
+            resolution: (1920, 1080),
+            full_px: 24.0,
+            mid_px: 10.0,
+            texture_px: 2.0,
+            mid: None,
+            far: None,
+            frustum_margin: 0.1,
+            cull_back_faces: false,
+            pinned: None,
+        }
+    }
+}
+
+/// A stitch whose centre normal makes this cosine or less with the direction to the eye
+/// faces away. Below zero, so that stitches near the silhouette (whose yarn stands off the
+/// surface and still shows) are kept.
+pub const BACK_FACE_COSINE: f32 = -0.2;
+
+/// The quality each built level uses, for a knit of `samples_per_loop` and `ring_segments`
+/// at full quality and `fluffiness`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LevelSettings {
+    pub samples_per_loop: usize,
+    pub ring_segments: usize,
+    pub fluffiness: f32,
+}
+
+impl DetailParams {
+    /// Checks the settings; errors name the setting.
+    pub fn validate(&self) -> Result<()> {
+        if self.views.is_empty() && self.pinned.is_none() {
+            return Err(KnitError::Parameter(
+                "camera-driven detail needs at least one camera view or pinned levels".into(),
+            ));
+        }
+        for (i, v) in self.views.iter().enumerate() {
+            let finite = v
+                .clip_from_object
+                .to_cols_array()
+                .iter()
+                .all(|x| x.is_finite())
+                && v.eye.is_finite();
+            if !finite {
+                return Err(KnitError::Parameter(format!(
+                    "camera view {i} has a NaN or infinite matrix or eye"
+                )));
+            }
+        }
+        let (w, h) = self.resolution;
+        if !(1..=65536).contains(&w) || !(1..=65536).contains(&h) {
+            return Err(KnitError::Parameter(format!(
+                "camera resolution must be 1..=65536 pixels each way, not {w} x {h}"
+            )));
+        }
+        let t = (self.full_px, self.mid_px, self.texture_px);
+        let finite = t.0.is_finite() && t.1.is_finite() && t.2.is_finite();
+        if !(finite && t.0 >= t.1 && t.1 >= t.2 && t.2 >= 0.0) {
+            return Err(KnitError::Parameter(format!(
+                "detail thresholds must satisfy full >= mid >= texture >= 0 pixels, not \
+                 {} / {} / {}",
+                t.0, t.1, t.2
+            )));
+        }
+        if !self.frustum_margin.is_finite() || self.frustum_margin > 100.0 {
+            return Err(KnitError::Parameter(format!(
+                "frustum margin must be a finite fraction of the frame up to 100, not {}",
+                self.frustum_margin
+            )));
+        }
+        for (name, q) in [("mid", self.mid), ("far", self.far)] {
+            if let Some(q) = q {
+                if !(6..=256).contains(&q.samples_per_loop) || !(3..=64).contains(&q.ring_segments)
+                {
+                    return Err(KnitError::Parameter(format!(
+                        "{name} detail needs 6..=256 samples per loop and 3..=64 ring \
+                         segments, not {} and {}",
+                        q.samples_per_loop, q.ring_segments
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The settings of a built `level` for a knit whose full quality is `full`. Coarser
+    /// levels never exceed the full one.
+    pub fn level_settings(&self, level: Level, full: LevelSettings) -> LevelSettings {
+        let q = match level {
+            Level::Full => return full,
+            Level::Mid => self.mid.unwrap_or(LevelQuality {
+                samples_per_loop: (full.samples_per_loop / 2).max(6),
+                ring_segments: (2 * full.ring_segments).div_ceil(3).max(3),
+                fluff: true,
+            }),
+            _ => self.far.unwrap_or(LevelQuality {
+                samples_per_loop: 6,
+                ring_segments: 3,
+                fluff: false,
+            }),
+        };
+        LevelSettings {
+            samples_per_loop: q.samples_per_loop.min(full.samples_per_loop),
+            ring_segments: q.ring_segments.min(full.ring_segments),
+            fluffiness: if q.fluff { full.fluffiness } else { 0.0 },
+        }
+    }
+
+    fn level_of_size(&self, px: f32) -> Level {
+        if px >= self.full_px {
+            Level::Full
+        } else if px >= self.mid_px {
+            Level::Mid
+        } else if px >= self.texture_px {
+            Level::Far
+        } else {
+            Level::Texture
+        }
+    }
+}
+
+/// Pixel position of clip-space point `c` (x right, y up, origin at the bottom-left corner).
+fn to_pixels(c: Vec4, res: Vec2) -> Vec2 {
+    (c.xy() / c.w * 0.5 + 0.5) * res
+}
+
+/// Clip-space w below which a point counts as at the eye: its projected size is unbounded.
+const NEAR_W: f32 = 1e-6;
+
+/// Screen length in pixels of `d` placed at `p` (clip-space `cp`); infinite at the eye.
+fn projected_length(view: &CameraView, cp: Vec4, p: Vec3, d: Vec3, res: Vec2) -> f32 {
+    let cq = view.clip_from_object * (p + d).extend(1.0);
+    if cp.w <= NEAR_W || cq.w <= NEAR_W {
+        return f32::INFINITY;
+    }
+    (to_pixels(cq, res) - to_pixels(cp, res)).length()
+}
+
+/// Whether a sphere (centre `p`, radius `r`) meets `view`'s frustum widened by `margin` of
+/// the frame's half-size on each side (far plane ignored). Planes from the rows of the
+/// clip matrix (Gribb and Hartmann).
+fn in_frustum(view: &CameraView, p: Vec3, r: f32, margin: f32) -> bool {
+    let m = view.clip_from_object;
+    let (r0, r1, r3) = (m.row(0), m.row(1), m.row(3));
+    let k = 1.0 + margin;
+    let planes = [k * r3 + r0, k * r3 - r0, k * r3 + r1, k * r3 - r1, r3];
+    let ph = p.extend(1.0);
+    planes.iter().all(|pl| {
+        let len = pl.xyz().length();
+        len == 0.0 || pl.dot(ph) >= -r * len
+    })
+}
+
+/// Whether a point with unit normal `n` at `p` faces away from `view`'s eye.
+fn faces_away(view: &CameraView, p: Vec3, n: Vec3) -> bool {
+    let to_eye = view.eye.xyz() - view.eye.w * p;
+    match to_eye.try_normalize() {
+        Some(d) => n.dot(d) <= BACK_FACE_COSINE,
+        None => false,
+    }
+}
+
+/// The level of every stitch (row-major, course by wale) for `detail`'s views, or its
+/// pinned levels. Stitches not in `built` (no surface under them) are [`Level::Culled`].
+/// `reach` is how far the yarn can stand off the surface (scene units): it widens each
+/// stitch's bounding sphere.
+pub fn stitch_levels(
+    surface: &dyn Surface,
+    lattice: &Lattice,
+    built: &[bool],
+    detail: &DetailParams,
+    reach: f32,
+) -> Result<Vec<Level>> {
+    if let Some(pinned) = &detail.pinned {
+        if pinned.len() != built.len() {
+            return Err(KnitError::Parameter(format!(
+                "pinned stitch levels are for {} stitches; this knit has {} ({} courses x {} \
+                 wales)",
+                pinned.len(),
+                built.len(),
+                lattice.courses,
+                lattice.wales
+            )));
+        }
+        return Ok(pinned
+            .iter()
+            .zip(built)
+            .map(|(&l, &b)| if b { l } else { Level::Culled })
+            .collect());
+    }
+    let wales = lattice.wales;
+    let res = Vec2::new(detail.resolution.0 as f32, detail.resolution.1 as f32);
+    let mut levels = vec![Level::Culled; built.len()];
+    levels
+        .par_chunks_mut(wales)
+        .enumerate()
+        .for_each(|(course, row)| {
+            for (wale, level) in row.iter_mut().enumerate() {
+                if !built[course * wales + wale] {
+                    continue;
+                }
+                *level = stitch_level(surface, lattice, course, wale, detail, reach, res);
+            }
+        });
+    Ok(levels)
+}
+
+impl TryFrom<u8> for Level {
+    type Error = KnitError;
+
+    fn try_from(v: u8) -> Result<Self> {
+        Level::ALL.get(v as usize).copied().ok_or_else(|| {
+            KnitError::Parameter(format!("a stitch level is 0 (full) to 4 (culled), not {v}"))
+        })
+    }
+}
+
+fn stitch_level(
+    surface: &dyn Surface,
+    lattice: &Lattice,
+    course: usize,
+    wale: usize,
+    detail: &DetailParams,
+    reach: f32,
+    res: Vec2,
+) -> Level {
+    let t = lattice.tile(course, wale);
+    let at = |uv: Vec2| surface.eval_nearest(uv);
+    let centre = at(lattice.tile_center(course, wale));
+    let (p, n) = (centre.position, centre.normal);
+    let across = at(0.5 * (t.n1 + t.n2)).position - at(0.5 * (t.n0 + t.n3)).position;
+    let up = at(0.5 * (t.n0 + t.n1)).position - at(0.5 * (t.n2 + t.n3)).position;
+    let width = across.length();
+    // The tile's corners are within half its diagonal of the centre; the yarn stands off by
+    // at most `reach`; loops reach a third of a row beyond the tile.
+    let radius = 0.75 * (across.length() + up.length()) + reach;
+    let mut visible = false;
+    let mut size: f32 = 0.0;
+    for view in &detail.views {
+        if detail.frustum_margin >= 0.0 && !in_frustum(view, p, radius, detail.frustum_margin) {
+            continue;
+        }
+        if detail.cull_back_faces && faces_away(view, p, n) {
+            continue;
+        }
+        visible = true;
+        let cp = view.clip_from_object * p.extend(1.0);
+        for d in [across, up, width * n] {
+            size = size.max(projected_length(view, cp, p, d, res));
+        }
+    }
+    if !visible {
+        return Level::Culled;
+    }
+    detail.level_of_size(size)
+}
+
+/// One stretch of a yarn piece built at one level: rings at a subset of the piece's
+/// full-density centreline samples.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Span {
+    /// Index of the yarn piece.
+    pub piece: usize,
+    /// First and last sample of the piece this span runs between (inclusive). `last` may
+    /// equal the piece's sample count on a closed piece: the sample wrapped to index 0.
+    pub first: usize,
+    pub last: usize,
+    /// Rings of the span's bundle.
+    pub rings: usize,
+    /// A whole closed piece at one level: the bundle closes on itself.
+    pub closed: bool,
+    pub level: Level,
+}
+
+impl Span {
+    /// The piece sample that ring `i` sits on (`samples`: the piece's sample count).
+    pub fn sample(&self, i: usize, samples: usize) -> usize {
+        if self.closed {
+            (i * samples + self.rings / 2) / self.rings
+        } else {
+            let steps = self.rings - 1;
+            let len = self.last - self.first;
+            (self.first + (i * len + steps / 2) / steps) % samples
+        }
+    }
+}
+
+/// The spans of one piece of `samples` full-density samples (`full_spl` per loop).
+/// `boundaries`: `(first sample, level)` of each run of one level, in yarn order, the first
+/// at sample 0 (an open piece) or anywhere (a closed one); `spl(level)` the samples per
+/// loop of a level.
+pub fn piece_spans(
+    piece: usize,
+    samples: usize,
+    closed: bool,
+    runs: &[(usize, Level)],
+    full_spl: usize,
+    spl: impl Fn(Level) -> usize,
+) -> Vec<Span> {
+    let rings_for = |len: usize, level: Level| -> usize {
+        // Intervals at the level's density, never more than the samples there are.
+        let k = (len * spl(level) + full_spl / 2) / full_spl;
+        k.clamp(1, len.max(1))
+    };
+    if runs.len() == 1 {
+        let level = runs[0].1;
+        return vec![if closed {
+            Span {
+                piece,
+                first: 0,
+                last: samples,
+                rings: rings_for(samples, level).max(3.min(samples)),
+                closed: true,
+                level,
+            }
+        } else {
+            Span {
+                piece,
+                first: 0,
+                last: samples - 1,
+                rings: if samples < 2 {
+                    samples
+                } else {
+                    rings_for(samples - 1, level) + 1
+                },
+                closed: false,
+                level,
+            }
+        }];
+    }
+    let mut spans = Vec::with_capacity(runs.len());
+    for (k, &(first, level)) in runs.iter().enumerate() {
+        let last = match runs.get(k + 1) {
+            Some(&(next, _)) if next > first => next,
+            Some(&(next, _)) => next + samples,
+            None if closed => runs[0].0 + samples,
+            None => samples - 1,
+        };
+        let len = last - first;
+        spans.push(Span {
+            piece,
+            first,
+            last,
+            rings: rings_for(len, level) + 1,
+            closed: false,
+            level,
+        });
+    }
+    spans
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn full_spans_keep_every_sample() {
+        let open = piece_spans(0, 95, false, &[(0, Level::Full)], 16, |_| 16);
+        assert_eq!(open[0].rings, 95);
+        assert!((0..95).all(|i| open[0].sample(i, 95) == i));
+        let closed = piece_spans(0, 96, true, &[(0, Level::Full)], 16, |_| 16);
+        assert_eq!(closed[0].rings, 96);
+        assert!((0..96).all(|i| closed[0].sample(i, 96) == i));
+    }
+
+    #[test]
+    fn mixed_spans_share_their_boundary_samples() {
+        let spl = |l: Level| match l {
+            Level::Full => 16,
+            Level::Mid => 8,
+            _ => 6,
+        };
+        let runs = [(0, Level::Far), (32, Level::Full), (64, Level::Mid)];
+        let spans = piece_spans(0, 95, false, &runs, 16, spl);
+        assert_eq!(spans.len(), 3);
+        for w in spans.windows(2) {
+            let a = w[0].sample(w[0].rings - 1, 95);
+            let b = w[1].sample(0, 95);
+            assert_eq!(a, b, "spans must meet at one sample");
+        }
+        assert_eq!(spans[2].sample(spans[2].rings - 1, 95), 94);
+        assert_eq!(spans[0].rings, 13); // 2 stitches at 6 per loop, plus the end ring
+                                        // Closed: the last span wraps round to the first one's start.
+        let runs = [(16, Level::Full), (48, Level::Far)];
+        let spans = piece_spans(0, 64, true, &runs, 16, spl);
+        assert_eq!(spans[1].sample(spans[1].rings - 1, 64), 16);
+        assert_eq!(spans[0].sample(spans[0].rings - 1, 64), 48);
+    }
+}
