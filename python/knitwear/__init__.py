@@ -20,6 +20,7 @@ from typing import Any
 
 from ._core import (
     BudgetError,
+    Camera,
     ColorPattern,
     GridSurface,
     InternalError,
@@ -48,13 +49,16 @@ def knit(surface: GridSurface | MeshSurface, pattern: Pattern, **settings: Any) 
     The keyword settings are `Knit`'s (see the README): ``courses``, ``wales``, ``gauge``,
     ``yarn_radius``, ``stitch_size``, ``fluffiness``, ``ring_segments``, ``samples_per_loop``,
     ``tension``, ``kappa``, ``seed``, ``colors``, ``color_image``, ``color_variation``,
-    ``threads``, ``budget_bytes``, ``measure_clearance``. ``stats["seconds"]`` is the build's.
+    ``threads``, ``budget_bytes``, ``measure_clearance``, and camera-driven detail:
+    ``camera`` (a `Camera`), ``detail_px``, ``mid_quality``, ``far_quality``,
+    ``frustum_margin``, ``cull_back_faces``. ``stats["seconds"]`` is the build's.
     """
     return Knit(surface, pattern, **settings).build(surface)
 
 
 __all__ = [
     "BudgetError",
+    "Camera",
     "ColorPattern",
     "GridSurface",
     "InternalError",

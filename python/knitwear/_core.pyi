@@ -132,6 +132,13 @@ class Knit:
         threads: int | None = None,
         budget_bytes: int | None = None,
         measure_clearance: bool = False,
+        camera: Camera | None = None,
+        stitch_levels: npt.ArrayLike | None = None,
+        detail_px: tuple[float, float, float] | None = None,
+        mid_quality: tuple[int, int, bool] | None = None,
+        far_quality: tuple[int, int, bool] | None = None,
+        frustum_margin: float = 0.1,
+        cull_back_faces: bool = False,
     ) -> None: ...
     def build(self, surface: GridSurface | MeshSurface) -> KnitResult:
         """The whole result for `surface` (the one knitted, or it deformed)."""
@@ -154,6 +161,26 @@ class Knit:
         """(width, height) of a stitch the loop shapes are tuned for, scene units."""
     @property
     def topology_key(self) -> int: ...
+    @property
+    def stitch_levels(self) -> npt.NDArray[np.uint8] | None:
+        """With a camera, (courses, wales): 0 full, 1 mid, 2 far, 3 texture, 4 culled (or no
+        surface under the stitch). None without a camera."""
+
+class Camera:
+    """Camera views of a surface for camera-driven detail. ``matrices``: (4, 4) or (F, 4, 4)
+    clip-from-object (``projection @ view @ world_from_object``, OpenGL clip conventions,
+    row-major); ``eyes``: (4,) or (F, 4), the eye in the surface's object space, ``(x, y, z,
+    1)`` for a perspective camera, ``(dx, dy, dz, 0)`` towards an orthographic one;
+    ``resolution``: (width, height) pixels. Several views (an animated camera's frames) model
+    each stitch for the view that sees it largest."""
+
+    def __init__(
+        self, matrices: npt.ArrayLike, eyes: npt.ArrayLike, resolution: tuple[int, int]
+    ) -> None: ...
+    @property
+    def views(self) -> int: ...
+    @property
+    def resolution(self) -> tuple[int, int]: ...
 
 def knit_texture(
     surface: GridSurface | MeshSurface,

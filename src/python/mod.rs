@@ -12,6 +12,7 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+mod detail;
 mod pile;
 mod texture;
 
@@ -452,6 +453,12 @@ fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResult> {
     stats.set_item("clearance_p01", s.clearance.map(|c| c.1))?;
     stats.set_item("seconds", s.seconds)?;
     stats.set_item("topology_key", s.topology_key)?;
+    let levels = PyDict::new(py);
+    for level in crate::detail::Level::ALL {
+        levels.set_item(level.name(), s.levels[level as usize])?;
+    }
+    stats.set_item("levels", levels)?;
+    stats.set_item("triangles_full_detail", s.triangles_full_detail)?;
     let yarn_radius = out.yarn_radius;
     Ok(PyKnitResult {
         vertices: rows(py, out.positions, 3)?,
@@ -574,6 +581,7 @@ fn params_from(
         budget_bytes: budget_bytes.unwrap_or(crate::budget::DEFAULT_BUDGET_BYTES),
         measure_clearance,
         stitch_size,
+        detail: None,
     };
     Ok(params)
 }
@@ -593,7 +601,8 @@ impl PyKnit {
         surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
         stitch_size=None, fluffiness=0.5, ring_segments=6, samples_per_loop=16, tension=0.0,
         kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
-        budget_bytes=None, measure_clearance=false
+        budget_bytes=None, measure_clearance=false, camera=None, stitch_levels=None, detail_px=None,
+        mid_quality=None, far_quality=None, frustum_margin=0.1, cull_back_faces=false
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -617,9 +626,16 @@ impl PyKnit {
         threads: Option<i64>,
         budget_bytes: Option<u64>,
         measure_clearance: bool,
+        camera: Option<&Bound<'_, detail::PyCamera>>,
+        stitch_levels: Option<&Bound<'_, PyAny>>,
+        detail_px: Option<(f32, f32, f32)>,
+        mid_quality: Option<(i64, i64, bool)>,
+        far_quality: Option<(i64, i64, bool)>,
+        frustum_margin: f32,
+        cull_back_faces: bool,
     ) -> PyResult<Self> {
         let surf = AnySurface::from_py(surface)?;
-        let params = params_from(
+        let mut params = params_from(
             courses,
             wales,
             gauge,
@@ -637,6 +653,15 @@ impl PyKnit {
             threads,
             budget_bytes,
             measure_clearance,
+        )?;
+        params.detail = detail::detail_from(
+            camera,
+            stitch_levels,
+            detail_px,
+            mid_quality,
+            far_quality,
+            frustum_margin,
+            cull_back_faces,
         )?;
         let pattern = pattern.get().inner.clone();
         let inner = guarded(py, move || {
@@ -732,6 +757,18 @@ impl PyKnit {
     fn topology_key(&self) -> u64 {
         self.inner.stats().topology_key
     }
+
+    /// With a camera: `(courses, wales)` uint8, each stitch's level (0 full, 1 mid, 2 far,
+    /// 3 texture, 4 culled or no surface under it). None without a camera.
+    #[getter]
+    fn stitch_levels(&self, py: Python<'_>) -> PyResult<Option<Py<PyAny>>> {
+        let Some(levels) = self.inner.stitch_levels() else {
+            return Ok(None);
+        };
+        let wales = self.inner.stats().wales;
+        let v: Vec<u8> = levels.iter().map(|l| *l as u8).collect();
+        rows(py, v, wales).map(Some)
+    }
 }
 
 /// Clearance of a knit result: `(min, p01)` in yarn diameters (DESIGN.md section 7).
@@ -793,5 +830,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_force_internal_error, m)?)?;
     pile::register(m)?;
     texture::register(m)?;
+    detail::register(m)?;
     Ok(())
 }

@@ -1,0 +1,173 @@
+//! Binding of camera-driven detail ([`crate::detail`]): `knitwear.Camera` (one or more views
+//! of the surface and a resolution) and the detail keywords of `Knit`. Thin: shapes and
+//! values are checked here only as far as turning them into core types needs; the core
+//! validates the rest.
+
+use glam::{Mat4, Vec4};
+use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+
+use super::ParameterError;
+use crate::detail::{CameraView, DetailParams, Level, LevelQuality};
+
+/// Camera views of a surface, for camera-driven detail: each view's clip-from-object matrix
+/// (`projection @ view @ world_from_object`, OpenGL clip conventions, row-major as numpy
+/// and Blender write matrices) and eye (`(x, y, z, 1)` position for a perspective camera,
+/// `(dx, dy, dz, 0)` unit direction towards an orthographic one), in the surface's object
+/// space; and the render resolution in pixels. Several views (an animated camera's frames)
+/// model each stitch for the view that sees it largest.
+#[pyclass(name = "Camera", module = "knitwear", frozen)]
+pub struct PyCamera {
+    pub(super) views: Vec<CameraView>,
+    pub(super) resolution: (u32, u32),
+}
+
+/// `obj` as a C-contiguous float32 array of `numpy.ascontiguousarray(obj, "float32")`,
+/// flattened, with its shape.
+fn floats(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<usize>, Vec<f32>)> {
+    let np = obj.py().import("numpy")?;
+    let arr = np
+        .call_method1("ascontiguousarray", (obj, "float32"))
+        .map_err(|e| ParameterError::new_err(format!("{name} must be numbers: {e}")))?;
+    let arr = arr
+        .cast::<PyArrayDyn<f32>>()
+        .map_err(|_| ParameterError::new_err(format!("{name} must be a float array")))?;
+    let ro = arr.readonly();
+    let shape = ro.shape().to_vec();
+    let data = ro
+        .as_slice()
+        .map_err(|_| ParameterError::new_err(format!("{name} must be contiguous")))?
+        .to_vec();
+    Ok((shape, data))
+}
+
+#[pymethods]
+impl PyCamera {
+    #[new]
+    fn new(
+        matrices: &Bound<'_, PyAny>,
+        eyes: &Bound<'_, PyAny>,
+        resolution: (u32, u32),
+    ) -> PyResult<Self> {
+        let (ms, m) = floats(matrices, "matrices")?;
+        let (es, e) = floats(eyes, "eyes")?;
+        let views = match (ms.as_slice(), es.as_slice()) {
+            ([4, 4], [4]) => 1,
+            ([f, 4, 4], [g, 4]) if f == g && *f > 0 => *f,
+            _ => {
+                return Err(ParameterError::new_err(format!(
+                    "a camera takes matrices (4, 4) and eyes (4,), or (F, 4, 4) and (F, 4) \
+                     for F views; got {ms:?} and {es:?}"
+                )))
+            }
+        };
+        let views = (0..views)
+            .map(|i| {
+                let rows: [f32; 16] = m[16 * i..16 * i + 16].try_into().expect("16 floats");
+                CameraView {
+                    // numpy is row-major, glam column-major.
+                    clip_from_object: Mat4::from_cols_array(&rows).transpose(),
+                    eye: Vec4::from_slice(&e[4 * i..4 * i + 4]),
+                }
+            })
+            .collect();
+        Ok(Self { views, resolution })
+    }
+
+    /// Number of views.
+    #[getter]
+    fn views(&self) -> usize {
+        self.views.len()
+    }
+
+    /// `(width, height)` in pixels.
+    #[getter]
+    fn resolution(&self) -> (u32, u32) {
+        self.resolution
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Camera({} view(s), {} x {})",
+            self.views.len(),
+            self.resolution.0,
+            self.resolution.1
+        )
+    }
+}
+
+fn quality(name: &str, q: Option<(i64, i64, bool)>) -> PyResult<Option<LevelQuality>> {
+    q.map(|(s, m, fluff)| {
+        let s = usize::try_from(s).map_err(|_| {
+            ParameterError::new_err(format!("{name} samples per loop must not be negative"))
+        })?;
+        let m = usize::try_from(m).map_err(|_| {
+            ParameterError::new_err(format!("{name} ring segments must not be negative"))
+        })?;
+        Ok(LevelQuality {
+            samples_per_loop: s,
+            ring_segments: m,
+            fluff,
+        })
+    })
+    .transpose()
+}
+
+/// Pinned levels from an integer array of any shape (flattened row-major).
+fn pinned_levels(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Level>> {
+    let (_, v) = floats(obj, "stitch_levels")?;
+    v.into_iter()
+        .map(|x| {
+            if x.fract() != 0.0 || !(0.0..=255.0).contains(&x) {
+                return Err(ParameterError::new_err(format!(
+                    "stitch levels are integers 0 (full) to 4 (culled), not {x}"
+                )));
+            }
+            Level::try_from(x as u8).map_err(super::to_py)
+        })
+        .collect()
+}
+
+/// The core's detail settings from `Knit`'s keywords; `None` without a camera or pinned
+/// levels.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn detail_from(
+    camera: Option<&Bound<'_, PyCamera>>,
+    stitch_levels: Option<&Bound<'_, PyAny>>,
+    detail_px: Option<(f32, f32, f32)>,
+    mid_quality: Option<(i64, i64, bool)>,
+    far_quality: Option<(i64, i64, bool)>,
+    frustum_margin: f32,
+    cull_back_faces: bool,
+) -> PyResult<Option<DetailParams>> {
+    let pinned = stitch_levels.map(pinned_levels).transpose()?;
+    let (views, resolution) = match (camera, &pinned) {
+        (None, None) => return Ok(None),
+        (Some(_), Some(_)) => {
+            return Err(ParameterError::new_err(
+                "give a camera or pinned stitch_levels, not both",
+            ))
+        }
+        (Some(c), None) => (c.get().views.clone(), c.get().resolution),
+        (None, Some(_)) => (Vec::new(), (1, 1)),
+    };
+    let defaults = DetailParams::default();
+    let (full_px, mid_px, texture_px) =
+        detail_px.unwrap_or((defaults.full_px, defaults.mid_px, defaults.texture_px));
+    Ok(Some(DetailParams {
+        views,
+        resolution,
+        pinned,
+        full_px,
+        mid_px,
+        texture_px,
+        mid: quality("mid_quality", mid_quality)?,
+        far: quality("far_quality", far_quality)?,
+        frustum_margin,
+        cull_back_faces,
+    }))
+}
+
+pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyCamera>()
+}

@@ -1,0 +1,123 @@
+"""Camera-driven detail through the Python API: `knitwear.Camera`, the detail keywords of
+`Knit`, the per-level stats and pinned levels."""
+
+import math
+
+import knitwear
+import numpy as np
+import pytest
+
+RES = (1920, 1080)
+
+
+def strip() -> knitwear.GridSurface:
+    """A flat 10 x 60 cm strip in z = 0."""
+    u, v = np.meshgrid(np.linspace(0, 1, 8), np.linspace(0, 1, 32))
+    pos = np.stack([0.1 * u, 0.6 * v, np.zeros_like(u)], axis=-1).astype(np.float32)
+    nrm = np.zeros_like(pos)
+    nrm[..., 2] = 1.0
+    return knitwear.GridSurface(pos, nrm)
+
+
+def perspective(fov_y: float, aspect: float, near: float, far: float) -> np.ndarray:
+    f = 1.0 / math.tan(fov_y / 2)
+    return np.array(
+        [
+            [f / aspect, 0, 0, 0],
+            [0, f, 0, 0],
+            [0, 0, (far + near) / (near - far), 2 * far * near / (near - far)],
+            [0, 0, -1, 0],
+        ]
+    )
+
+
+def look_at(eye: np.ndarray, target: np.ndarray, up: np.ndarray) -> np.ndarray:
+    f = (target - eye) / np.linalg.norm(target - eye)
+    s = np.cross(f, up)
+    s /= np.linalg.norm(s)
+    u = np.cross(s, f)
+    m = np.eye(4)
+    m[0, :3], m[1, :3], m[2, :3] = s, u, -f
+    m[:3, 3] = -m[:3, :3] @ eye
+    return m
+
+
+def receding_camera() -> knitwear.Camera:
+    eye = np.array([0.05, -0.08, 0.06])
+    m = perspective(math.radians(50), RES[0] / RES[1], 0.01, 100) @ look_at(
+        eye, np.array([0.05, 0.25, 0.0]), np.array([0.0, 0.0, 1.0])
+    )
+    return knitwear.Camera(m, [*eye, 1.0], RES)
+
+
+def test_without_a_camera_the_knit_is_unchanged_and_all_full() -> None:
+    a = knitwear.knit(strip(), knitwear.Pattern.preset("seed"), seed=2)
+    b = knitwear.Knit(strip(), knitwear.Pattern.preset("seed"), seed=2)
+    assert b.stitch_levels is None
+    s = a.stats
+    assert s["levels"] == {"full": s["stitches"], "mid": 0, "far": 0, "texture": 0, "culled": 0}
+    assert s["triangles_full_detail"] == s["triangles"]
+    np.testing.assert_array_equal(a.vertices, b.build(strip()).vertices)
+
+
+def test_a_camera_sets_levels_and_saves_triangles() -> None:
+    cam = receding_camera()
+    assert cam.views == 1 and cam.resolution == RES
+    knit = knitwear.Knit(strip(), knitwear.Pattern.preset("stockinette"), camera=cam)
+    result = knit.build(strip())
+    s = result.stats
+    assert sum(s["levels"].values()) == s["stitches"]
+    assert s["levels"]["full"] > 0 and s["levels"]["mid"] > 0 and s["levels"]["far"] > 0
+    assert s["triangles"] < s["triangles_full_detail"]
+    levels = knit.stitch_levels
+    assert levels.shape == knit.counts and levels.dtype == np.uint8
+    assert (levels == 0).sum() == s["levels"]["full"]
+    # Coarser thresholds push stitches to the texture.
+    coarse = knitwear.knit(
+        strip(), knitwear.Pattern.preset("stockinette"), camera=cam, detail_px=(60, 30, 12)
+    )
+    assert coarse.stats["levels"]["texture"] > 0
+    # Several views: the frames of an animated camera, as a stack.
+    two = knitwear.Camera(np.stack([np.eye(4)] * 2), np.array([[0, 0, 1, 0]] * 2), (64, 64))
+    assert two.views == 2
+
+
+def test_pinned_levels_rebuild_the_same_mesh() -> None:
+    pattern = knitwear.Pattern.preset("rib_2x2")
+    first = knitwear.Knit(strip(), pattern, camera=receding_camera(), seed=4)
+    again = knitwear.Knit(strip(), pattern, stitch_levels=first.stitch_levels, seed=4)
+    assert again.topology_key == first.topology_key
+    a, b = first.build(strip()), again.build(strip())
+    np.testing.assert_array_equal(a.vertices, b.vertices)
+    np.testing.assert_array_equal(a.triangles, b.triangles)
+    np.testing.assert_array_equal(again.positions(strip()), a.vertices)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"detail_px": (4, 8, 2)}, "full >= mid >= texture"),
+        ({"mid_quality": (3, 6, True)}, "6..=256 samples"),
+        ({"frustum_margin": float("nan")}, "frustum margin"),
+        ({"stitch_levels": np.zeros((2, 2), np.uint8)}, "not both"),
+    ],
+)
+def test_bad_detail_settings_raise_parameter_errors(kwargs: dict, match: str) -> None:
+    with pytest.raises(knitwear.ParameterError, match=match):
+        knitwear.Knit(strip(), knitwear.Pattern.preset("garter"), camera=receding_camera(),
+                      **kwargs)
+
+
+def test_bad_cameras_and_pinned_levels_raise() -> None:
+    with pytest.raises(knitwear.ParameterError, match="matrices"):
+        knitwear.Camera(np.eye(3), [0, 0, 0, 1], RES)
+    with pytest.raises(knitwear.ParameterError, match="NaN"):
+        knitwear.Knit(
+            strip(),
+            knitwear.Pattern.preset("garter"),
+            camera=knitwear.Camera(np.full((4, 4), np.nan), [0, 0, 0, 1], RES),
+        )
+    with pytest.raises(knitwear.ParameterError, match="pinned stitch levels"):
+        knitwear.Knit(strip(), knitwear.Pattern.preset("garter"), stitch_levels=[0, 1, 2])
+    with pytest.raises(knitwear.ParameterError, match="0 \\(full\\) to 4"):
+        knitwear.Knit(strip(), knitwear.Pattern.preset("garter"), stitch_levels=[7])
