@@ -22,6 +22,8 @@ from typing import Any
 
 import bpy
 import knitwear
+import numpy as np
+from mathutils import Matrix
 
 from . import material, mesh_build, sampling, source_link
 from .properties import CUSTOM_PATTERN, KNIT_SETTINGS, MAX_COLORS
@@ -34,6 +36,16 @@ MIN_CLEARANCE = 0.95
 
 #: The core reads a gauge as stitches per this many scene units (10 cm in metres).
 _GAUGE_LENGTH = 0.1
+
+#: Custom property of a knit object: its stitch levels (one byte per stitch, row-major) when
+#: it was knitted with auto detail, pinned so every frame rebuilds the same topology.
+LEVELS_PROPERTY = "knitwear_stitch_levels"
+
+#: An animated camera is sampled at most at this many frames of the scene's frame range.
+MAX_CAMERA_FRAMES = 25
+
+#: Names of the core's detail levels, finest first.
+LEVEL_NAMES = ("full", "mid", "far", "texture", "culled")
 
 
 @dataclass(frozen=True)
@@ -55,6 +67,15 @@ class KnitOutcome:
     core_seconds: float
     #: Seconds spent building the Blender mesh from the core's arrays.
     mesh_seconds: float
+    #: Stitches at each detail level (`LEVEL_NAMES`); all "full" without auto detail.
+    levels: dict[str, int]
+    #: Triangles the knit would have with every stitch at full quality.
+    triangles_full_detail: int
+    #: Whether auto detail applied (Detail is Auto and the scene has a camera).
+    auto_detail: bool
+    #: The material of the knitwear texture the source now wears, where stitches were left
+    #: to it; None otherwise.
+    texture_material: str | None
 
 
 def settings_from(obj: bpy.types.Object) -> dict[str, Any]:
@@ -195,6 +216,9 @@ class Bound:
     stitch_size: tuple[float, float]
     #: Grid samples the NURBS source was tessellated with, or (0, 0) for a mesh.
     samples: tuple[int, int]
+    #: Each stitch's detail level (one byte per stitch, row-major) with auto detail, else
+    #: None.
+    levels: bytes | None = None
 
 
 @dataclass(frozen=True)
@@ -231,6 +255,124 @@ def core_inputs(
     return CoreInputs(sampled, pattern, kwargs, min_samples)
 
 
+def _animated(obj: bpy.types.Object | None) -> bool:
+    """Whether ``obj``, its data or a parent has animation or drivers."""
+    while obj is not None:
+        for idb in (obj, obj.data):
+            anim = getattr(idb, "animation_data", None)
+            if anim is not None and (anim.action is not None or len(anim.drivers) > 0):
+                return True
+        obj = obj.parent
+    return False
+
+
+def _camera_frames(scene: bpy.types.Scene, source: bpy.types.Object) -> list[int]:
+    """The frames to model the knit for: the current one, and where the camera or the
+    source moves, up to `MAX_CAMERA_FRAMES` spread over the scene's frame range."""
+    frames = [scene.frame_current]
+    start, end = scene.frame_start, scene.frame_end
+    if end > start and (_animated(scene.camera) or _animated(source)):
+        count = min(MAX_CAMERA_FRAMES, end - start + 1)
+        frames += [int(round(f)) for f in np.linspace(start, end, count)]
+    return sorted(set(frames))
+
+
+def _camera_view(
+    scene: bpy.types.Scene, source: bpy.types.Object, depsgraph: bpy.types.Depsgraph
+) -> tuple[np.ndarray, np.ndarray]:
+    """The scene camera's clip-from-object matrix and eye in the knit's object space (the
+    source's location and rotation, as `sampling` gives the knit), in the current frame."""
+    cam = scene.camera.evaluated_get(depsgraph)
+    r = scene.render
+    x = max(1, r.resolution_x * r.resolution_percentage // 100)
+    y = max(1, r.resolution_y * r.resolution_percentage // 100)
+    proj = cam.calc_matrix_camera(
+        depsgraph, x=x, y=y, scale_x=r.pixel_aspect_x, scale_y=r.pixel_aspect_y
+    )
+    loc, rot, _scale = source.evaluated_get(depsgraph).matrix_world.decompose()
+    world_from_object = Matrix.LocRotScale(loc, rot, None)
+    clip = proj @ cam.matrix_world.inverted() @ world_from_object
+    object_from_world = world_from_object.inverted()
+    if cam.data.type == "ORTHO":
+        # The camera looks down its -Z: +Z points back towards it.
+        towards = (object_from_world.to_3x3() @ cam.matrix_world.col[2].xyz).normalized()
+        eye = (*towards, 0.0)
+    else:
+        eye = (*(object_from_world @ cam.matrix_world.translation), 1.0)
+    return np.array(clip, dtype=np.float64), np.array(eye, dtype=np.float64)
+
+
+def _is_closed(source: bpy.types.Object, depsgraph: bpy.types.Depsgraph) -> bool:
+    """Whether ``source`` as evaluated is a closed surface: every edge on the border of
+    only one face has (next to) no length (the poles of a sphere)."""
+    evaluated = source.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        if mesh is None or len(mesh.polygons) == 0:
+            return False
+        ne = len(mesh.edges)
+        loop_edges = np.empty(len(mesh.loops), dtype=np.int32)
+        mesh.loops.foreach_get("edge_index", loop_edges)
+        border = np.flatnonzero(np.bincount(loop_edges, minlength=ne) == 1)
+        if border.size == 0:
+            return True
+        edges = np.empty((ne, 2), dtype=np.int32)
+        mesh.edges.foreach_get("vertices", edges.ravel())
+        pos = np.empty((len(mesh.vertices), 3), dtype=np.float32)
+        mesh.attributes["position"].data.foreach_get("vector", pos.ravel())
+        size = float(np.linalg.norm(pos.max(axis=0) - pos.min(axis=0)))
+        a, b = pos[edges[border, 0]], pos[edges[border, 1]]
+        return float(np.linalg.norm(a - b, axis=1).max()) <= 1e-6 * max(size, 1e-30)
+    finally:
+        evaluated.to_mesh_clear()
+
+
+def detail_settings(
+    source: bpy.types.Object, context: bpy.types.Context, settings: Mapping[str, Any]
+) -> dict[str, Any]:
+    """The core's camera-driven detail keywords for ``settings``: empty unless Detail is
+    Auto and the scene has a (perspective or orthographic) camera. An animated camera or
+    source is followed over the scene's frame range (the frame is restored after)."""
+    scene = context.scene
+    camera = scene.camera
+    if settings["detail_mode"] != "AUTO" or camera is None or camera.type != "CAMERA":
+        return {}
+    if camera.data.type not in {"PERSP", "ORTHO"}:
+        return {}  # a panoramic projection has no single clip matrix
+    frame, subframe = scene.frame_current, scene.frame_subframe
+    frames = _camera_frames(scene, source)
+    views = []
+    try:
+        for f in frames:
+            if f != scene.frame_current or len(frames) > 1:
+                scene.frame_set(f)
+            views.append(_camera_view(scene, source, context.evaluated_depsgraph_get()))
+    finally:
+        if (scene.frame_current, scene.frame_subframe) != (frame, subframe):
+            scene.frame_set(frame, subframe=subframe)
+    r = scene.render
+    resolution = (
+        max(1, r.resolution_x * r.resolution_percentage // 100),
+        max(1, r.resolution_y * r.resolution_percentage // 100),
+    )
+    camera_views = knitwear.Camera(
+        np.stack([v[0] for v in views]), np.stack([v[1] for v in views]), resolution
+    )
+    cull_back = bool(settings["cull_back_faces"]) and _is_closed(
+        source, context.evaluated_depsgraph_get()
+    )
+    return {
+        "camera": camera_views,
+        "detail_px": (
+            float(settings["detail_full_px"]),
+            float(settings["detail_mid_px"]),
+            float(settings["detail_texture_px"]),
+        ),
+        "frustum_margin": float(settings["frustum_margin"]),
+        "cull_back_faces": cull_back,
+    }
+
+
 def _run_core(
     source: bpy.types.Object,
     context: bpy.types.Context,
@@ -245,11 +387,19 @@ def _run_core(
         inputs.kwargs,
         inputs.min_samples,
     )
+    detail = detail_settings(source, context, settings)
     t0 = time.perf_counter()
-    knit = knitwear.Knit(sampled.surface, pattern, **kwargs)
+    knit = knitwear.Knit(sampled.surface, pattern, **kwargs, **detail)
     result = knit.build(sampled.surface)
     core_seconds = time.perf_counter() - t0
-    bound = Bound(knit.counts, knit.yarn_radius, knit.stitch_size, min_samples or (0, 0))
+    levels = knit.stitch_levels
+    bound = Bound(
+        knit.counts,
+        knit.yarn_radius,
+        knit.stitch_size,
+        min_samples or (0, 0),
+        None if levels is None else levels.tobytes(),
+    )
     if progress:
         progress(0.8)
     return sampled, result, bound, core_seconds
@@ -266,11 +416,41 @@ def _store(
     stored.bound_yarn_radius = bound.yarn_radius
     stored.bound_stitch_size = bound.stitch_size
     stored.bound_samples = bound.samples
+    if bound.levels is None:
+        obj.pop(LEVELS_PROPERTY, None)
+    else:
+        obj[LEVELS_PROPERTY] = bound.levels
     stored.is_knit = True
 
 
+def _texture_where_needed(
+    source: bpy.types.Object,
+    context: bpy.types.Context,
+    settings: Mapping[str, Any],
+    result: Any,
+) -> str | None:
+    """Give ``source`` the knitwear texture when auto detail left stitches to it (about 8
+    pixels per stitch, 256 to 4096 a side); return the material's name, or None."""
+    if result.stats["levels"]["texture"] == 0:
+        return None
+    from . import texture  # texture imports this module
+
+    courses, wales = result.stats["courses"], result.stats["wales"]
+    side = [int(min(4096, max(256, 8 * n))) for n in (wales, courses)]
+    material = texture.texture_object(
+        source, context=context, width=side[0], height=side[1], **settings
+    )
+    return material.name
+
+
 def _outcome(
-    obj: bpy.types.Object, result: Any, t_start: float, core_s: float, mesh_s: float
+    obj: bpy.types.Object,
+    result: Any,
+    t_start: float,
+    core_s: float,
+    mesh_s: float,
+    bound: Bound,
+    texture_material: str | None,
 ) -> KnitOutcome:
     stats = result.stats
     skipped = int(stats.get("stitches_skipped", 0))
@@ -285,6 +465,10 @@ def _outcome(
         seconds=time.perf_counter() - t_start,
         core_seconds=core_s,
         mesh_seconds=mesh_s,
+        levels={name: int(stats["levels"][name]) for name in LEVEL_NAMES},
+        triangles_full_detail=int(stats["triangles_full_detail"]),
+        auto_detail=bound.levels is not None,
+        texture_material=texture_material,
     )
 
 
@@ -333,12 +517,13 @@ def knit(
     (collection or context.scene.collection).objects.link(obj)
     _store(obj, source, settings, bound)
     source_link.link_source(obj)
+    textured = _texture_where_needed(source, context, settings, result)
     # The knit follows its source from a frame handler that writes mesh data, which Blender
     # asks to do with the interface locked during renders.
     context.scene.render.use_lock_interface = True
     if progress:
         progress(1.0)
-    return _outcome(obj, result, t_start, core_s, mesh_s)
+    return _outcome(obj, result, t_start, core_s, mesh_s, bound, textured)
 
 
 def knit_object(
@@ -368,11 +553,13 @@ def knit_result(
 def bound_of(obj: bpy.types.Object) -> Bound:
     """The values knit object ``obj`` pinned when it was knitted or last updated."""
     stored = obj.knitwear
+    levels = obj.get(LEVELS_PROPERTY)
     return Bound(
         tuple(stored.bound_counts),
         stored.bound_yarn_radius,
         tuple(stored.bound_stitch_size),
         tuple(stored.bound_samples),
+        None if levels is None else bytes(levels),
     )
 
 
@@ -392,6 +579,9 @@ def bind(
     kwargs["courses"], kwargs["wales"] = bound.counts
     kwargs["yarn_radius"] = bound.yarn_radius
     kwargs["stitch_size"] = bound.stitch_size
+    if bound.levels is not None:
+        # The levels auto detail chose at knit time, whatever the camera does now.
+        kwargs["stitch_levels"] = np.frombuffer(bound.levels, dtype=np.uint8)
     return knitwear.Knit(sampled.surface, _pattern(settings), **kwargs)
 
 
@@ -438,9 +628,10 @@ def update(
     obj.matrix_world = sampled.matrix
     _store(obj, source, merged, bound)
     source_link.link_source(obj)
+    textured = _texture_where_needed(source, context, merged, result)
     if progress:
         progress(1.0)
-    return _outcome(obj, result, t_start, core_s, mesh_s)
+    return _outcome(obj, result, t_start, core_s, mesh_s, bound, textured)
 
 
 def update_knit(

@@ -37,6 +37,16 @@ def _summary(outcome: api.KnitOutcome) -> str:
         f"in {outcome.seconds:.2f} s"
     )
     notes = []
+    if outcome.auto_detail:
+        lv = outcome.levels
+        saved = outcome.triangles_full_detail - outcome.triangles
+        notes.append(
+            f"auto detail: {lv['full']:,} full, {lv['mid']:,} reduced, {lv['far']:,} plain, "
+            f"{lv['texture']:,} texture, {lv['culled']:,} unseen stitches; {saved:,} "
+            f"triangles fewer than full detail ({outcome.triangles_full_detail:,})"
+        )
+        if outcome.texture_material:
+            notes.append(f"the source wears '{outcome.texture_material}' for the texture")
     if outcome.skipped_stitches:
         notes.append(f"{outcome.skipped_stitches:,} stitches skipped: outside the UV map")
     if outcome.clamped_stitches:

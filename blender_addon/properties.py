@@ -70,6 +70,15 @@ DIRECTION_ITEMS = [
     ("V", "Along V", "Courses (the yarn's rows) run along the surface's V direction"),
 ]
 
+DETAIL_MODE_ITEMS = [
+    ("AUTO", "Auto", "Model each stitch as finely as the scene camera sees it: full quality "
+     "near the camera, fewer segments further away, plain tubes in the distance, the "
+     "knitwear texture on the source where stitches are a few pixels; stitches outside the "
+     "camera's view are not built. Without a scene camera, every stitch is full quality"),
+    ("FULL", "Full", "Every stitch at the quality set in Yarn (ring segments, samples per "
+     "loop), whatever the camera sees"),
+]
+
 COLOR_MODE_ITEMS = [
     ("SINGLE", "Single", "One yarn colour"),
     ("STRIPES", "Stripes", "Horizontal stripes cycling through the yarn colours"),
@@ -277,6 +286,60 @@ class KnitSettingsMixin:
         min=0.0,
         max=1.0,
         subtype="FACTOR",
+    )
+    # -- Detail (camera-driven level of detail and culling)
+    detail_mode: EnumProperty(
+        name="Detail",
+        description="How finely stitches are modelled",
+        items=DETAIL_MODE_ITEMS,
+        default="AUTO",
+    )
+    detail_full_px: FloatProperty(
+        name="Full Above",
+        description="Stitches at least this many pixels across in the render get the full "
+        "quality set in Yarn",
+        default=24.0,
+        min=0.0,
+        soft_max=200.0,
+        precision=1,
+        subtype="PIXEL",
+    )
+    detail_mid_px: FloatProperty(
+        name="Reduced Above",
+        description="Stitches at least this many pixels across (and below Full Above) get "
+        "half the samples and two thirds of the ring segments",
+        default=10.0,
+        min=0.0,
+        soft_max=100.0,
+        precision=1,
+        subtype="PIXEL",
+    )
+    detail_texture_px: FloatProperty(
+        name="Texture Below",
+        description="Stitches smaller than this many pixels are not built: the source "
+        "surface wears the knitwear texture there. Between this and Reduced Above, stitches "
+        "are plain tubes of 3 segments",
+        default=2.0,
+        min=0.0,
+        soft_max=20.0,
+        precision=1,
+        subtype="PIXEL",
+    )
+    frustum_margin: FloatProperty(
+        name="Frame Margin",
+        description="Stitches this far outside the camera's frame (a fraction of the frame's "
+        "half-size) are still built; the camera is followed over the scene's frame range",
+        default=0.1,
+        min=0.0,
+        soft_max=1.0,
+        max=100.0,
+        subtype="FACTOR",
+    )
+    cull_back_faces: BoolProperty(
+        name="Cull Back",
+        description="On a closed surface, do not build the stitches that face away from the "
+        "camera in every frame (the front hides them)",
+        default=True,
     )
 
 

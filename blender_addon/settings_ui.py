@@ -56,11 +56,24 @@ def _colour(layout: bpy.types.UILayout, settings: bpy.types.AnyType) -> None:
     layout.prop(settings, "color_variation")
 
 
+def _detail(layout: bpy.types.UILayout, settings: bpy.types.AnyType) -> None:
+    layout.row().prop(settings, "detail_mode", expand=True)
+    if settings.detail_mode != "AUTO":
+        return
+    col = layout.column(align=True)
+    col.prop(settings, "detail_full_px")
+    col.prop(settings, "detail_mid_px")
+    col.prop(settings, "detail_texture_px")
+    layout.prop(settings, "frustum_margin")
+    layout.prop(settings, "cull_back_faces")
+
+
 _SECTIONS = (
     ("pattern", "Pattern", _pattern, False),
     ("size", "Size", _size, False),
     ("yarn", "Yarn", _yarn, True),
     ("colour", "Colour", _colour, False),
+    ("detail", "Detail", _detail, True),
 )
 
 

@@ -1,0 +1,147 @@
+"""Auto detail in Blender: the scene camera sets each stitch's level, the report counts them,
+levels are pinned so an animated knit keeps its topology, stitches left to the texture put
+the knitwear texture on the source, and without a camera nothing changes."""
+
+import importlib
+from types import ModuleType
+
+import bpy
+import numpy as np
+from blender_scenes import positions
+from mathutils import Vector
+
+#: A 10 x 60 cm strip at about the default gauge: 20 wales x 160 courses.
+STRIP = {"size_mode": "COUNTS", "courses": 160, "wales": 20}
+
+
+def strip() -> bpy.types.Object:
+    """A UV-mapped plane scaled to a 10 x 60 cm strip along y, centred on the origin."""
+    bpy.ops.mesh.primitive_plane_add(size=1.0)
+    obj = bpy.context.active_object
+    obj.scale = (0.1, 0.6, 1.0)
+    bpy.context.view_layer.update()
+    return obj
+
+
+def camera(location: tuple, target: tuple) -> bpy.types.Object:
+    """The scene camera (a 20 mm lens) at ``location`` looking at ``target``, rendering
+    1920 x 1080."""
+    data = bpy.data.cameras.new("Camera")
+    data.lens = 20.0
+    cam = bpy.data.objects.new("Camera", data)
+    bpy.context.scene.collection.objects.link(cam)
+    aim(cam, location, target)
+    scene = bpy.context.scene
+    scene.camera = cam
+    scene.render.resolution_x, scene.render.resolution_y = 1920, 1080
+    scene.render.resolution_percentage = 100
+    return cam
+
+
+def aim(cam: bpy.types.Object, location: tuple, target: tuple) -> None:
+    cam.location = location
+    cam.rotation_euler = (Vector(target) - Vector(location)).to_track_quat("-Z", "Y").to_euler()
+    bpy.context.view_layer.update()
+
+
+def receding_camera() -> bpy.types.Object:
+    """Low over the strip's near end, looking along it."""
+    return camera((0.0, -0.38, 0.06), (0.0, -0.05, 0.0))
+
+
+def test_without_a_camera_the_knit_is_full_detail(api: ModuleType) -> None:
+    outcome = api.knit(strip(), **STRIP)
+    assert not outcome.auto_detail
+    assert outcome.levels["full"] == outcome.stitches
+    assert outcome.triangles == outcome.triangles_full_detail
+    assert api.LEVELS_PROPERTY not in outcome.object
+
+
+def test_auto_detail_follows_the_camera_and_the_report_counts_levels(api: ModuleType) -> None:
+    source = strip()
+    receding_camera()
+    full = api.knit(source, detail_mode="FULL", **STRIP)
+    assert not full.auto_detail
+    outcome = api.knit(source, **STRIP)
+    assert outcome.auto_detail
+    lv = outcome.levels
+    assert sum(lv.values()) == outcome.stitches
+    assert lv["full"] > 0 and lv["mid"] > 0 and lv["far"] > 0, lv
+    assert outcome.triangles_full_detail == full.triangles
+    assert outcome.triangles < full.triangles
+    assert len(outcome.object.data.polygons) == outcome.triangles
+    levels = np.frombuffer(bytes(outcome.object[api.LEVELS_PROPERTY]), dtype=np.uint8)
+    assert levels.size == outcome.stitches
+    # The operator says what it built.
+    bpy.context.view_layer.objects.active = source
+    source.select_set(True)
+    assert bpy.ops.object.knitwear_knit(**STRIP) == {"FINISHED"}
+    knit = bpy.context.active_object
+    assert len(knit.data.polygons) == outcome.triangles
+
+
+def test_levels_are_pinned_so_the_knit_follows_its_source_after_the_camera_moves(
+    api: ModuleType,
+) -> None:
+    source = strip()
+    cam = receding_camera()
+    first = api.knit(source, **STRIP)
+    obj = first.object
+    before = positions(obj.data).copy()
+    follow = importlib.import_module(f"{api.__package__}.follow")
+    # The camera moves: the knit keeps the levels it was made with.
+    aim(cam, (0.0, 0.3, 0.5), (0.0, 0.0, 0.0))
+    source.location.z += 0.01
+    bpy.context.view_layer.update()
+    follow.follow(obj)
+    after = positions(obj.data)
+    np.testing.assert_allclose(after, before, atol=1e-6)  # moved rigidly: same in its space
+    # Update re-chooses the levels for the camera as it is now (high above: coarser).
+    outcome = api.update(obj)
+    assert outcome.auto_detail and outcome.levels["full"] < first.levels["full"]
+    assert len(obj.data.polygons) == outcome.triangles
+
+
+def test_an_animated_camera_is_followed_over_the_frame_range(api: ModuleType) -> None:
+    source = strip()
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 10
+    cam = camera((0.0, -0.2, 0.12), (0.0, -0.2, 0.0))  # looking down at the near end
+    still = api.knit(source, **STRIP)
+    assert still.levels["culled"] > 0
+    cam.keyframe_insert("location", frame=1)
+    cam.location.y = 0.2  # the far end by frame 10
+    cam.keyframe_insert("location", frame=10)
+    scene.frame_set(1)
+    moving = api.knit(source, **STRIP)
+    assert moving.levels["culled"] < still.levels["culled"]
+    assert scene.frame_current == 1
+
+
+def test_stitches_below_a_few_pixels_are_left_to_the_knitwear_texture(api: ModuleType) -> None:
+    source = strip()
+    receding_camera()
+    outcome = api.knit(source, detail_texture_px=9.0, **STRIP)
+    assert outcome.levels["texture"] > 0
+    assert outcome.texture_material is not None
+    assert source.data.materials[0].name == outcome.texture_material
+
+
+def test_back_faces_of_a_closed_mesh_are_culled(api: ModuleType) -> None:
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=0.1)
+    sphere = bpy.context.active_object
+    camera((0.6, 0.0, 0.0), (0.0, 0.0, 0.0))
+    settings = {"size_mode": "COUNTS", "courses": 30, "wales": 60, "frustum_margin": 1.0}
+    culled = api.knit(sphere, **settings)
+    kept = api.knit(sphere, cull_back_faces=False, **settings)
+    assert kept.levels["culled"] == 0
+    assert 0.3 * culled.stitches < culled.levels["culled"] < 0.6 * culled.stitches
+
+
+
+def test_an_open_surface_is_never_back_face_culled(api: ModuleType) -> None:
+    source = strip()
+    camera((0.0, 0.0, -0.5), (0.0, 0.0, 0.0))  # from below: the strip's back, which shows
+    outcome = api.knit(source, frustum_margin=1.0, **STRIP)
+    assert outcome.auto_detail
+    assert outcome.levels["culled"] == 0
