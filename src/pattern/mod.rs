@@ -15,9 +15,9 @@ mod stitch;
 
 pub use chart::parse_chart;
 pub use color::ColorPattern;
-pub use knitspeak::{looks_like_knitspeak, parse_knitspeak};
 pub use instruction::Instruction;
-pub use presets::PRESETS;
+pub use knitspeak::{looks_like_knitspeak, parse_knitspeak};
+pub use presets::{FAIR_ISLE_BAND, PRESETS};
 pub use rows::WrittenRow;
 pub use stitch::{Face, Form, Stitch};
 
@@ -82,8 +82,13 @@ impl StitchPattern {
         let key = normalise_name(name);
         let found = PRESETS.iter().find(|(n, _)| normalise_name(n) == key);
         match found {
-            Some((n, chart)) => {
-                let mut p = parse_chart(chart)?;
+            Some((n, text)) => {
+                let mut p = if looks_like_knitspeak(text) {
+                    parse_knitspeak(text)
+                } else {
+                    parse_chart(text)
+                }
+                .map_err(|e| KnitError::Internal(format!("preset {n}: {e}")))?;
                 p.name = (*n).to_string();
                 Ok(p)
             }
@@ -114,18 +119,24 @@ impl StitchPattern {
         self.cells[(course % self.height) * self.width + wale % self.width]
     }
 
-    /// The chart as text, top row first, `k`/`p` symbols (parses back to an equal pattern).
+    /// The chart as text, top row first. A pattern of plain knit and purl stitches is drawn
+    /// with `k` and `p` only; any other gets symbols and a legend (see [`chart`]). Either way
+    /// [`StitchPattern::from_chart`] reads it back to an equal pattern.
     pub fn chart(&self) -> String {
-        let mut s = String::with_capacity((self.width + 1) * self.height);
-        for r in (0..self.height).rev() {
-            s.extend(
-                self.cells[r * self.width..(r + 1) * self.width]
-                    .iter()
-                    .map(|c| c.symbol()),
-            );
-            s.push('\n');
-        }
-        s
+        chart::write_chart(self)
+    }
+
+    /// Per chart row, bottom row first: (loops of the row below it works, stitches it makes).
+    /// Every row of a pattern keeps its count, so both equal [`Self::width`]: this is the
+    /// stitch-count conservation a parsed pattern guarantees, exposed for tests.
+    pub fn stitch_counts(&self) -> Vec<(usize, usize)> {
+        (0..self.height)
+            .map(|r| {
+                let row = &self.cells[r * self.width..(r + 1) * self.width];
+                let worked = row.iter().map(|c| usize::from(c.sources)).sum();
+                (worked, self.width)
+            })
+            .collect()
     }
 }
 
