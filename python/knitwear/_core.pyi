@@ -1,5 +1,6 @@
 """Type stubs of the compiled core (``knitwear._core``). Lengths are in scene units."""
 
+import os
 from typing import Any, Sequence
 
 import numpy as np
@@ -62,16 +63,25 @@ class MeshSurface:
         knit texture cover."""
 
 class Pattern:
-    """A stitch pattern: a chart of knit and purl stitches, repeated over the surface."""
+    """A stitch pattern: a chart of stitches (knit, purl, cables, decreases, yarn-overs,
+    slips, bobbles), repeated over the surface."""
 
     @staticmethod
     def preset(name: str) -> Pattern: ...
     @staticmethod
-    def from_chart(text: str) -> Pattern: ...
+    def from_chart(text: str) -> Pattern:
+        """A chart, top row first, as seen on the right side, with an optional legend
+        ("X = 2/2 RC"); errors name the row, the column and the symbol."""
     @staticmethod
     def from_knitspeak(text: str) -> Pattern:
-        """Knitspeak row instructions ("Row 1 (RS): *k2, p2; rep from *."): knit and purl
-        repeats so far; anything else is a PatternError naming the row and the token."""
+        """Knitspeak rows ("Row 1 (RS): P2, *2/2 RC, p2; rep from *."); an unknown stitch or
+        an unbalanced row is a PatternError naming the row, the instruction and the token."""
+    @staticmethod
+    def from_text(text: str) -> Pattern:
+        """Knitspeak or a chart, told apart by content."""
+    @staticmethod
+    def from_file(path: str | os.PathLike[str]) -> Pattern:
+        """A UTF-8 file of Knitspeak or a chart; an unreadable file is a PatternError."""
     @staticmethod
     def looks_like_knitspeak(text: str) -> bool: ...
     @staticmethod
@@ -82,7 +92,11 @@ class Pattern:
     def width(self) -> int: ...
     @property
     def height(self) -> int: ...
-    def chart(self) -> str: ...
+    def chart(self) -> str:
+        """The chart, top row first; k/p only for knit and purl patterns, else with a legend.
+        `Pattern.from_chart` reads it back to the same stitches."""
+    def stitch_counts(self) -> list[tuple[int, int]]:
+        """Per row, bottom first: (loops of the row below worked, stitches made)."""
 
 class ColorPattern:
     """A palette (linear RGB, 0..1) and a chart of palette indices (digits 0-9, then a-z),
@@ -91,6 +105,11 @@ class ColorPattern:
     def __init__(self, palette: Sequence[Sequence[float]], chart: str = "0") -> None: ...
     @staticmethod
     def stripes(palette: Sequence[Sequence[float]], rows_each: int = 2) -> ColorPattern: ...
+    @staticmethod
+    def preset(name: str, palette: Sequence[Sequence[float]]) -> ColorPattern:
+        """A named colour chart ("fair_isle_band": 0 background, 1 pattern)."""
+    @staticmethod
+    def presets() -> list[str]: ...
 
 class KnitResult:
     vertices: npt.NDArray[np.float32]  # (V, 3)

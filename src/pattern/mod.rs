@@ -17,7 +17,7 @@ pub use chart::parse_chart;
 pub use color::ColorPattern;
 pub use instruction::Instruction;
 pub use knitspeak::{looks_like_knitspeak, parse_knitspeak};
-pub use presets::{FAIR_ISLE_BAND, PRESETS};
+pub use presets::{color_preset, COLOR_PRESETS, FAIR_ISLE_BAND, PRESETS};
 pub use rows::WrittenRow;
 pub use stitch::{Face, Form, Stitch};
 
@@ -75,6 +75,16 @@ impl StitchPattern {
     /// Parses Knitspeak row instructions (see [`parse_knitspeak`] for what is supported).
     pub fn from_knitspeak(text: &str) -> Result<Self> {
         parse_knitspeak(text)
+    }
+
+    /// Knitspeak or a chart, told apart by content: Knitspeak starts with a row header (see
+    /// [`looks_like_knitspeak`]).
+    pub fn from_text(text: &str) -> Result<Self> {
+        if looks_like_knitspeak(text) {
+            parse_knitspeak(text)
+        } else {
+            parse_chart(text)
+        }
     }
 
     /// A named preset (case, spaces and hyphens are ignored: "Rib 2x2" finds `rib_2x2`).

@@ -6,6 +6,9 @@
 //! The first eight are the original knit/purl charts, kept cell for cell (the add-on and the
 //! clearance tables name them).
 
+use super::ColorPattern;
+use crate::error::{KnitError, Result};
+
 /// (name, Knitspeak or chart text), in display order.
 pub const PRESETS: &[(&str, &str)] = &[
     ("stockinette", "k"),
@@ -128,3 +131,22 @@ pub const FAIR_ISLE_BAND: &str = "00000000\n\
                                   01000100\n\
                                   00000000\n\
                                   11111111";
+
+/// Named colour charts for [`super::ColorPattern`]: (name, chart of palette indices).
+pub const COLOR_PRESETS: &[(&str, &str)] = &[("fair_isle_band", FAIR_ISLE_BAND)];
+
+/// A named colour chart in `palette` (which must have a colour for every index it uses).
+pub fn color_preset(name: &str, palette: Vec<[f32; 3]>) -> Result<ColorPattern> {
+    let key = super::normalise_name(name);
+    let Some((_, chart)) = COLOR_PRESETS
+        .iter()
+        .find(|(n, _)| super::normalise_name(n) == key)
+    else {
+        let names: Vec<&str> = COLOR_PRESETS.iter().map(|(n, _)| *n).collect();
+        return Err(KnitError::Pattern(format!(
+            "unknown colour preset {name:?}; colour presets are: {}",
+            names.join(", ")
+        )));
+    };
+    ColorPattern::new(palette, chart)
+}

