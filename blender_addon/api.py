@@ -26,7 +26,7 @@ import numpy as np
 from mathutils import Matrix
 
 from . import material, mesh_build, sampling, source_link
-from .properties import CUSTOM_PATTERN, KNIT_SETTINGS, MAX_COLORS
+from .properties import CUSTOM_PATTERN, FILE_PATTERN, KNIT_SETTINGS, MAX_COLORS
 
 #: Called with the fraction done (0..1) between the steps of a knit.
 Progress = Callable[[float], None]
@@ -100,7 +100,26 @@ def _pattern(settings: Mapping[str, Any]) -> "knitwear.Pattern":
         if knitwear.Pattern.looks_like_knitspeak(text):
             return knitwear.Pattern.from_knitspeak(text)
         return knitwear.Pattern.from_chart(_chart_text(text))
+    if settings["pattern"] == FILE_PATTERN:
+        return _pattern_from_file(settings)
     return knitwear.Pattern.preset(settings["pattern"])
+
+
+def _pattern_from_file(settings: Mapping[str, Any]) -> "knitwear.Pattern":
+    """Pattern is From File: a Blender Text if one is named, else the file (Knitspeak or a
+    chart, told apart by content)."""
+    name = settings["pattern_text"]
+    if name:
+        text = bpy.data.texts.get(name)
+        if text is None:
+            raise knitwear.PatternError(f"no Blender Text named {name!r} (Pattern Text)")
+        return knitwear.Pattern.from_text(text.as_string())
+    path = settings["pattern_file"]
+    if not path:
+        raise knitwear.PatternError(
+            "Pattern is From File but neither Pattern File nor Pattern Text is set"
+        )
+    return knitwear.Pattern.from_file(bpy.path.abspath(path))
 
 
 def _palette(settings: Mapping[str, Any]) -> list[tuple[float, float, float]]:

@@ -27,6 +27,7 @@ from .settings_schema import SettingsSchema
 MAX_COLORS = 4
 
 CUSTOM_PATTERN = "CUSTOM"
+FILE_PATTERN = "FILE"
 
 # Display names and tooltips for the core's presets. A preset the core adds later still shows
 # up (title-cased) because the list itself comes from `knitwear.Pattern.presets()`.
@@ -39,6 +40,25 @@ _PRESET_LABELS: dict[str, tuple[str, str]] = {
     "seed": ("Seed", "Knit 1, purl 1, offset every row: pebbly texture"),
     "moss": ("Moss", "Knit 1, purl 1, offset every second row"),
     "basketweave": ("Basketweave", "Alternating blocks of knit and purl"),
+    "twisted_rib": ("Twisted Rib", "1x1 rib with the knits worked through the back loop"),
+    "cable_c4": ("C4 Cable", "4-stitch rope cables (C4B every 6 rows) on purl ground"),
+    "cable_c6": ("C6 Cable", "6-stitch rope cables (C6B every 8 rows) on purl ground"),
+    "horseshoe_cable": ("Horseshoe Cable", "16-stitch panel: 3/3 right and left crosses"),
+    "honeycomb_cable": ("Honeycomb Cable", "2/2 crosses meeting and parting in a honeycomb"),
+    "mock_cable_rib": ("Mock Cable Rib", "2x2 rib with 1/1 right twists: cables without a needle"),
+    "twisted_cable_rib": ("Twisted Cable Rib", "Little 1/1 left twists between purls"),
+    "diamond": ("Diamond Brocade", "Purl diamonds on stockinette"),
+    "chevron": ("Chevron", "Purl zigzags on stockinette"),
+    "feather_and_fan": ("Feather and Fan", "Old shale lace: scallops of yarn-overs"),
+    "eyelet_rows": ("Eyelet Rows", "Rows of yarn-over holes on stockinette"),
+    "lace_diamond": ("Lace Diamond", "Yarn-overs with paired decreases in a diamond"),
+    "bobbles": ("Bobbles", "Staggered bobbles on stockinette"),
+    "linen_stitch": ("Linen Stitch", "Slipped stitches with little bars of yarn in front"),
+    "fair_isle": (
+        "Fair Isle",
+        "Stockinette in the round: give it colours with Colour > Chart (e.g. "
+        "knitwear.ColorPattern.preset('fair_isle_band', ...))",
+    ),
 }
 
 
@@ -47,7 +67,16 @@ def _pattern_items() -> list[tuple[str, str, str]]:
     for name in knitwear.Pattern.presets():
         label, tip = _PRESET_LABELS.get(name, (name.replace("_", " ").title(), ""))
         items.append((name, label, tip))
-    items.append((CUSTOM_PATTERN, "Custom Chart", "The stitch chart typed in Chart"))
+    items.append(
+        (CUSTOM_PATTERN, "Custom Chart", "The stitch chart or Knitspeak typed in Chart")
+    )
+    items.append(
+        (
+            FILE_PATTERN,
+            "From File",
+            "A Knitspeak or chart file, or a Blender Text (Pattern Text, which wins)",
+        )
+    )
     return items
 
 
@@ -112,7 +141,8 @@ class KnitSettingsMixin:
     # -- Pattern
     pattern: EnumProperty(
         name="Pattern",
-        description="Stitch pattern of knit and purl stitches, repeated over the surface",
+        description="Stitch pattern (knit, purl, cables, lace, bobbles...), repeated over the "
+        "surface",
         items=PATTERN_ITEMS,
         default=DEFAULT_PATTERN,
     )
@@ -120,10 +150,24 @@ class KnitSettingsMixin:
         name="Chart",
         description="Custom stitch chart, used when Pattern is Custom Chart. One line per row "
         "(top line = top row); rows may also be separated with ';'. "
-        "k = knit, p = purl (also | v for knit, - . o for purl). Or Knitspeak row "
-        "instructions of knit and purl repeats: 'Row 1 (RS): *k2, p2; rep from *. Row 2: "
-        "*p2, k2; rep from *.'",
+        "k = knit, p = purl (also | v for knit, - . for purl), O yo, / k2tog, \\ ssk, "
+        "^ cdd, B bobble, Q k tbl; other symbols need a legend row such as 'X = 2/2 RC' "
+        "(a cable is a run of its symbol over its columns: XXXX). Or Knitspeak rows: "
+        "'Row 1 (RS): P2, *2/2 RC, p2; rep from *. Row 2: K2, *p4, k2; rep from *.'",
         default="kkpp;kkpp;pppp;kkkk",
+    )
+    pattern_file: StringProperty(
+        name="Pattern File",
+        description="A text file of Knitspeak rows or a chart with its legend, used when "
+        "Pattern is From File (Pattern Text, if set, is used instead)",
+        default="",
+        subtype="FILE_PATH",
+    )
+    pattern_text: StringProperty(
+        name="Pattern Text",
+        description="A Blender Text (Text Editor) holding Knitspeak rows or a chart with its "
+        "legend, used when Pattern is From File",
+        default="",
     )
     # -- Size
     size_mode: EnumProperty(

@@ -3,13 +3,16 @@ both show the same sections in the same order."""
 
 import bpy
 
-from .properties import CUSTOM_PATTERN, MAX_COLORS
+from .properties import CUSTOM_PATTERN, FILE_PATTERN, MAX_COLORS
 
 
 def _pattern(layout: bpy.types.UILayout, settings: bpy.types.AnyType) -> None:
     layout.prop(settings, "pattern")
     if settings.pattern == CUSTOM_PATTERN:
         layout.prop(settings, "pattern_chart")
+    elif settings.pattern == FILE_PATTERN:
+        layout.prop_search(settings, "pattern_text", bpy.data, "texts")
+        layout.prop(settings, "pattern_file")
 
 
 def _size(layout: bpy.types.UILayout, settings: bpy.types.AnyType) -> None:

@@ -242,10 +242,11 @@ def test_poll(api: ModuleType) -> None:
 def test_knitspeak_in_the_chart_field_knits_like_the_preset(api: ModuleType) -> None:
     source = nurbs_patch()
     preset = api.knit_result(source, **SMALL, pattern="rib_2x2")
-    text = "Row 1 (RS): *K2, p2; rep from *. Row 2: *K2, p2; rep from *."
+    # The first stitch of a row sits at the right edge: "p2, k2" charts as kkpp.
+    text = "Rnd 1: *P2, k2; rep from *."
     written = api.knit_result(source, **SMALL, pattern="CUSTOM", pattern_chart=text)
     np.testing.assert_array_equal(written.vertices, preset.vertices)
     import knitwear
 
-    with pytest.raises(knitwear.PatternError, match="c4f"):
-        api.knit_result(source, **SMALL, pattern="CUSTOM", pattern_chart="Row 1: k2, c4f.")
+    with pytest.raises(knitwear.PatternError, match="c4q"):
+        api.knit_result(source, **SMALL, pattern="CUSTOM", pattern_chart="Row 1: k2, c4q.")

@@ -58,7 +58,7 @@ def test_settings_sections_draw_every_setting(addon: ModuleType, api: ModuleType
     knit = api.knit_object(nurbs_patch(), **SMALL)
     settings = knit.knitwear
     drawn: set[str] = set()
-    for pattern in ("stockinette", "CUSTOM"):
+    for pattern in ("stockinette", "CUSTOM", "FILE"):
         for size_mode in ("GAUGE", "COUNTS"):
             for color_mode in ("SINGLE", "STRIPES", "CHART", "IMAGE"):
                 settings.pattern, settings.size_mode = pattern, size_mode

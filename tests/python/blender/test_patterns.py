@@ -1,0 +1,80 @@
+"""Stitch patterns in the add-on (issue 3): Knitspeak pasted into the sidebar's Chart field
+and patterns from a file or a Blender Text knit; a bad one is an ERROR report (operator) or a
+PatternError (API), naming the row and the stitch."""
+
+from pathlib import Path
+from types import ModuleType
+
+import bpy
+import numpy as np
+import pytest
+from blender_scenes import SMALL, nurbs_patch
+
+CABLE = (
+    "Rows 1 and 5 (RS): P2, *k4, p2; rep from *.\n"
+    "Rows 2, 4, and 6: K2, *p4, k2; rep from *.\n"
+    "Row 3: P2, *2/2 RC, p2; rep from *."
+)
+
+
+def test_pasted_cable_knitspeak_knits_like_the_cable_preset(api: ModuleType) -> None:
+    source = nurbs_patch()
+    preset = api.knit_result(source, **SMALL, pattern="cable_c4")
+    # The sidebar's one-line field holds the rows on one line.
+    pasted = api.knit_result(
+        source, **SMALL, pattern="CUSTOM", pattern_chart=CABLE.replace("\n", " ")
+    )
+    np.testing.assert_array_equal(pasted.vertices, preset.vertices)
+    # And the operator takes it as the sidebar passes it, storing it on the knit.
+    assert bpy.ops.object.knitwear_knit(**SMALL, pattern="CUSTOM", pattern_chart=CABLE) == {
+        "FINISHED"
+    }
+    knit = bpy.context.active_object
+    assert knit.knitwear.pattern_chart == CABLE
+    assert len(knit.data.vertices) == len(preset.vertices)
+
+
+def test_a_pattern_file_and_a_blender_text(api: ModuleType, tmp_path: Path) -> None:
+    source = nurbs_patch()
+    preset = api.knit_result(source, **SMALL, pattern="cable_c4")
+    path = tmp_path / "cable.ks"
+    path.write_text(CABLE)
+    from_file = api.knit_result(source, **SMALL, pattern="FILE", pattern_file=str(path))
+    np.testing.assert_array_equal(from_file.vertices, preset.vertices)
+
+    text = bpy.data.texts.new("cable chart")
+    text.write("pXXXXp\npkkkkp\npkkkkp\npkkkkp\npkkkkp\npkkkkp\n\nX = C4B\n")
+    from_text = api.knit_result(
+        source, **SMALL, pattern="FILE", pattern_text=text.name, pattern_file="//nothing.ks"
+    )
+    assert len(from_text.vertices) == len(preset.vertices)
+
+    assert bpy.ops.object.knitwear_knit(**SMALL, pattern="FILE", pattern_file=str(path)) == {
+        "FINISHED"
+    }
+
+
+def test_bad_pattern_files_are_reported(api: ModuleType, core: ModuleType, tmp_path: Path) -> None:
+    source = nurbs_patch()
+    bad = tmp_path / "bad.ks"
+    bad.write_text("Row 1 (RS): P2, *2/2 RX, p2; rep from *.\nRow 2: K2, *p4, k2; rep from *.")
+    with pytest.raises(core.PatternError, match=r"Row 1.*2/2 RX.*2/2 RC"):
+        api.knit_result(source, **SMALL, pattern="FILE", pattern_file=str(bad))
+    with pytest.raises(RuntimeError, match=r"Error.*2/2 RX"):
+        bpy.ops.object.knitwear_knit(**SMALL, pattern="FILE", pattern_file=str(bad))
+    with pytest.raises(core.PatternError, match="cannot read"):
+        api.knit_result(source, **SMALL, pattern="FILE", pattern_file=str(tmp_path / "no.ks"))
+    with pytest.raises(core.PatternError, match="neither"):
+        api.knit_result(source, **SMALL, pattern="FILE")
+    with pytest.raises(core.PatternError, match="no Blender Text"):
+        api.knit_result(source, **SMALL, pattern="FILE", pattern_text="no such text")
+
+
+def test_every_preset_is_in_the_pattern_menu(core: ModuleType) -> None:
+    from bl_ext.user_default.knitwear import properties
+
+    items = {identifier: label for identifier, label, _tip in properties.PATTERN_ITEMS}
+    for name in core.Pattern.presets():
+        assert name in items
+        assert items[name] == properties._PRESET_LABELS[name][0], name
+    assert "FILE" in items and "CUSTOM" in items
