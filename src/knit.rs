@@ -788,6 +788,23 @@ impl PreparedKnit {
             .collect())
     }
 
+    /// The interlock-topology metric of this knit on `surface` (see
+    /// [`crate::metrics::crossing_order`]).
+    pub fn crossing_order(&self, surface: &dyn Surface) -> Result<crate::metrics::CrossingOrder> {
+        let lines: Vec<Vec<Vec3>> = self
+            .uv_centrelines(surface)?
+            .into_iter()
+            .map(|y| y.points)
+            .collect();
+        Ok(crate::metrics::crossing_order(
+            &self.lattice,
+            &self.pattern,
+            &self.pieces,
+            &lines,
+            self.sampling.samples_per_loop,
+        ))
+    }
+
     fn build_in_pool(&self, surface: &dyn Surface) -> Result<KnitOutput> {
         let nv = self.total.vertices as usize;
         let nt = self.total.triangles as usize;

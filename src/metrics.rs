@@ -9,6 +9,10 @@
 //! value is the exact minimum over a set of candidates fixed by the geometry alone, so the
 //! result is bit for bit the same for any number of threads.
 
+mod crossing_order;
+
+pub use crossing_order::{crossing_order, CrossingOrder};
+
 use glam::Vec3;
 use rayon::prelude::*;
 

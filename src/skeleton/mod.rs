@@ -12,17 +12,19 @@ pub mod curvature;
 mod key_points;
 mod offsets;
 mod spline;
+pub mod stitch_shape;
 pub mod tuning;
 
 pub use key_points::{boundary_sinker, key_points, KEY_POINTS};
-pub use offsets::NormalOffsets;
+pub use offsets::{NormalOffsets, Shape, DEFAULT_SHAPE, SHAPE_COEFFICIENTS};
 pub use spline::CardinalSpline;
+pub use stitch_shape::stitch_key_points;
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-use crate::lattice::{Lattice, Tile};
-use crate::pattern::{Stitch, StitchPattern};
+use crate::lattice::Lattice;
+use crate::pattern::StitchPattern;
 use crate::surface::Surface;
 
 /// A continuous run of built stitches of one course: one piece of yarn. A course is one
@@ -62,7 +64,7 @@ impl YarnPiece {
     }
 
     /// Parameter of sample `j` on the spline through this piece's key points.
-    fn sample_t(&self, j: usize, samples_per_loop: usize) -> f32 {
+    pub fn sample_t(&self, j: usize, samples_per_loop: usize) -> f32 {
         let t = (j * KEY_POINTS) as f32 / samples_per_loop as f32;
         if self.closed {
             t
@@ -132,21 +134,6 @@ pub fn yarn_pieces(lattice: &Lattice, built: &[bool]) -> Vec<YarnPiece> {
     pieces
 }
 
-/// The tile of stitch (course, wale) where `wale` may exceed the lattice's last wale on a
-/// cyclic-u surface: the tile is then moved by one period so the piece stays continuous.
-fn tile_unwrapped(lattice: &Lattice, course: usize, wale: usize) -> Tile {
-    let wales = lattice.wales;
-    let t = lattice.tile(course, wale % wales);
-    let shift = Vec2::new((wale / wales) as f32 * lattice.tile.x * wales as f32, 0.0);
-    Tile {
-        n0: t.n0 + shift,
-        n1: t.n1 + shift,
-        n2: t.n2 + shift,
-        n3: t.n3 + shift,
-        n4: t.n4 + shift,
-    }
-}
-
 /// Key points of a piece in (u, v, lambda), in yarn order.
 pub fn piece_key_points(
     lattice: &Lattice,
@@ -154,34 +141,15 @@ pub fn piece_key_points(
     offsets: &NormalOffsets,
     piece: &YarnPiece,
 ) -> Vec<Vec3> {
-    let wales = lattice.wales;
     let mut out = Vec::with_capacity(piece.stitches * KEY_POINTS);
     for j in 0..piece.stitches {
-        let w = piece.first_wale + j;
-        let wale = w % wales;
-        let this = pattern.stitch(piece.course, wale);
-        let above = pattern.stitch(piece.course + 1, wale);
-        let left: Stitch = if wale > 0 {
-            pattern.stitch(piece.course, wale - 1)
-        } else if lattice.cyclic_u {
-            pattern.stitch(piece.course, wales - 1)
-        } else {
-            this
-        };
-        // The pattern repeats downwards too, so the first course has a stitch "below".
-        let below = pattern.stitch(piece.course + pattern.height() - 1, wale);
-        let lambdas = offsets.lambdas(this, above, left);
-        let tile = tile_unwrapped(lattice, piece.course, w);
-        let mut kp = key_points(&tile);
-        if left != this && below == this {
-            kp[0] = boundary_sinker(&tile);
-        }
-        lattice.keep_on_fabric(&mut kp);
-        out.extend(
-            kp.iter()
-                .zip(lambdas)
-                .map(|(uv, l)| Vec3::new(uv.x, uv.y, l)),
-        );
+        out.extend(stitch_key_points(
+            lattice,
+            pattern,
+            offsets,
+            piece.course,
+            piece.first_wale + j,
+        ));
     }
     out
 }

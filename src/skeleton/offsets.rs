@@ -28,7 +28,41 @@ pub struct NormalOffsets {
     /// k0..k5, then the sinker's extra offset where the stitch to its left is of the other
     /// kind (a knit/purl boundary, where the yarn changes sides).
     pub x: [f32; COEFFICIENTS],
+    /// The yarn diameter the coefficients are measured against (1 while tuning, in diameters;
+    /// scene units once [`scaled`](Self::scaled)). Crossed loops, stacked decreases and floats
+    /// stand off by fractions of it (see [`super::stitch_shape`]).
+    pub diameter: f32,
+    /// The shapes of the stitches beyond knit and purl, in diameters (see [`Shape`]).
+    pub shape: [f32; SHAPE_COEFFICIENTS],
 }
+
+/// The coefficients of [`NormalOffsets::shape`], each in yarn diameters.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(usize)]
+pub enum Shape {
+    /// Normal offset of a crossing or gathered loop in front at its leg bottoms (k1, k5) (a
+    /// loop behind stays put there, held by the head below it).
+    PushBottom,
+    /// The same at its leg tops (k2, k4).
+    PushTop,
+    /// The same at its head (k3).
+    PushHead,
+    /// Half the normal separation of the two legs of a leaning loop at their bottoms (the left
+    /// leg in front): a loop stretched across columns would otherwise lie on itself.
+    SplitBottom,
+    /// The same at their tops.
+    SplitTop,
+    /// Half the normal separation of the crossed legs of a twisted stitch (`k tbl`).
+    Twist,
+    /// How far the float past a slipped stitch stands off the fabric.
+    Float,
+}
+
+/// Number of [`Shape`] coefficients.
+pub const SHAPE_COEFFICIENTS: usize = 7;
+
+/// Where the tuning of the shape coefficients starts.
+pub const DEFAULT_SHAPE: [f32; SHAPE_COEFFICIENTS] = [0.5, 0.5, 0.25, 0.2, 0.2, 0.5, 1.5];
 
 /// Number of tuned coefficients.
 pub const COEFFICIENTS: usize = 7;
@@ -38,13 +72,22 @@ impl NormalOffsets {
     pub fn uniform(x: f32) -> Self {
         Self {
             x: [x; COEFFICIENTS],
+            diameter: 1.0,
+            shape: DEFAULT_SHAPE,
         }
     }
 
     pub fn scaled(self, k: f32) -> Self {
         Self {
             x: self.x.map(|v| v * k),
+            diameter: self.diameter * k,
+            shape: self.shape,
         }
+    }
+
+    /// A shape coefficient in scene units.
+    pub fn shape(&self, which: Shape) -> f32 {
+        self.shape[which as usize] * self.diameter
     }
 
     /// The signed offsets lambda_0..lambda_5 of a loop, given its stitch, the stitch above it

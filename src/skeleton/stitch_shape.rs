@@ -1,0 +1,180 @@
+//! The key points of one stitch in (u, v, lambda), for every kind of stitch (DESIGN.md
+//! section 3, "Advanced stitches").
+//!
+//! A loop's bottom (sinker k0, leg bottoms k1 and k5) sits in its own tile, where it was pulled
+//! through the loop below. Its top (leg tops k2 and k4, head k3) sits in the tile where the
+//! loop lands: the column of the stitch in the row above that is pulled through it. For a
+//! plain stitch that is the tile straight above its bottom; under a cable or a decrease the
+//! loop leans to another column, which is how a cable's stitches cross: the legs of loops
+//! travelling opposite ways cross halfway up the row. (Knitting crosses the loops of the row
+//! below the cable row on the cable needle: these are the loops that lean here, so the yarn of
+//! every row still visits its stitches in needle order.)
+//!
+//! Where loops cross or are gathered by a decrease, the one the pattern puts in front stands
+//! half a yarn diameter further out along the normal and the one behind half a diameter
+//! further in, so that crossing legs and stacked heads clear each other by a diameter.
+
+use glam::{Vec2, Vec3};
+
+use super::key_points::{boundary_sinker, key_points, KEY_POINTS};
+use super::offsets::{NormalOffsets, Shape};
+use crate::lattice::{Lattice, Tile};
+use crate::pattern::{Form, Stitch, StitchPattern};
+
+/// How far a bobble stands off the fabric, in yarn diameters.
+pub const BOBBLE_HEIGHT: f32 = 2.0;
+/// Where a yarn-over's legs end, as a fraction of the row up from the row's bottom: the hole
+/// under it.
+pub const YARN_OVER_LEG_BOTTOM: f32 = 0.45;
+/// The same for a made stitch (m1), whose legs reach further down: a small, closed gap.
+pub const MAKE_ONE_LEG_BOTTOM: f32 = 0.2;
+
+/// The stitch at (course, wale) of the fabric and the wale its loop lands in, clamped to the
+/// fabric on an open-u surface (a loop leaning off the edge stays straight).
+///
+/// Round a cyclic-u surface whose wales are not a whole number of pattern repeats, the last,
+/// partial repeat meets the first at the seam with its columns out of step: loops there stay
+/// straight too, rather than land on a stitch that is not pulled through them.
+pub fn landing(lattice: &Lattice, pattern_width: usize, stitch: Stitch, wale: usize) -> isize {
+    let wales = lattice.wales as isize;
+    let dest = wale as isize + isize::from(stitch.land_offset);
+    let whole = wales - wales % pattern_width as isize;
+    let fits = if lattice.cyclic_u {
+        whole == wales || ((wale as isize) < whole && (0..whole).contains(&dest))
+    } else {
+        (0..wales).contains(&dest)
+    };
+    if fits {
+        dest
+    } else {
+        wale as isize
+    }
+}
+
+/// The tile of stitch (course, wale) for a wale that may lie past either end of a cyclic-u
+/// lattice: the tile is moved by whole periods so a piece stays continuous.
+pub fn tile_at(lattice: &Lattice, course: usize, wale: isize) -> Tile {
+    let wales = lattice.wales as isize;
+    let t = lattice.tile(course, wale.rem_euclid(wales) as usize);
+    let shift = Vec2::new(
+        wale.div_euclid(wales) as f32 * lattice.tile.x * wales as f32,
+        0.0,
+    );
+    Tile {
+        n0: t.n0 + shift,
+        n1: t.n1 + shift,
+        n2: t.n2 + shift,
+        n3: t.n3 + shift,
+        n4: t.n4 + shift,
+    }
+}
+
+/// Key points k0..k5 of stitch (`course`, `wale`) in (u, v, lambda). `wale` may run past the
+/// last wale on a cyclic-u surface (a closed piece); the points are then one period on.
+pub fn stitch_key_points(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    offsets: &NormalOffsets,
+    course: usize,
+    wale: usize,
+) -> [Vec3; KEY_POINTS] {
+    let wales = lattice.wales;
+    let w = wale % wales;
+    let this = pattern.stitch(course, w);
+    let left: Stitch = if w > 0 {
+        pattern.stitch(course, w - 1)
+    } else if lattice.cyclic_u {
+        pattern.stitch(course, wales - 1)
+    } else {
+        this
+    };
+    // The pattern repeats downwards too, so the first course has a stitch "below".
+    let below = pattern.stitch(course + pattern.height() - 1, w);
+    let unwrap = (wale - w) as isize;
+    let dest = landing(lattice, pattern.width(), this, w);
+    // A slipped stitch above carries this loop up one more row (where there is one).
+    let rise = usize::from(this.rise > 0 && course + 1 < lattice.courses);
+    let above = pattern.stitch(
+        course + 1 + rise,
+        dest.rem_euclid(wales as isize) as usize,
+    );
+    let own = tile_at(lattice, course, w as isize + unwrap);
+    let top = tile_at(lattice, course + rise, dest + unwrap);
+    let bottom_kp = key_points(&own);
+    let top_kp = key_points(&top);
+    let mut kp = [
+        bottom_kp[0],
+        bottom_kp[1],
+        top_kp[2],
+        top_kp[3],
+        top_kp[4],
+        bottom_kp[5],
+    ];
+    if left.face != this.face && below.face == this.face {
+        kp[0] = boundary_sinker(&own);
+    }
+    let mut lambdas = offsets.lambdas(this, above, left);
+    match this.form {
+        Form::Plain => {}
+        Form::Bobble => {
+            // The knot of extra loops worked into this stitch stands off the front: its loop
+            // is carried out by BOBBLE_HEIGHT at the top and half that at the feet.
+            let h = BOBBLE_HEIGHT * offsets.diameter;
+            for (i, l) in lambdas.iter_mut().enumerate().skip(1) {
+                *l += if i == 1 || i == 5 { 0.5 * h } else { h };
+            }
+        }
+        Form::Twisted => {
+            // Through the back loop: the legs swap feet and cross above them, the leg the
+            // yarn reaches first in front.
+            kp.swap(1, 5);
+            lambdas[1] += offsets.shape(Shape::Twist);
+            lambdas[5] -= offsets.shape(Shape::Twist);
+        }
+        Form::YarnOver | Form::MakeOne => {
+            // No loop below to pass through: the legs stop short, over a hole.
+            let f = if this.form == Form::YarnOver {
+                YARN_OVER_LEG_BOTTOM
+            } else {
+                MAKE_ONE_LEG_BOTTOM
+            };
+            let up = f * (own.n0 - own.n3);
+            kp[1] += up;
+            kp[5] += up;
+        }
+        Form::Slip { yarn_front } => {
+            // No loop: the yarn floats straight past, above the heads of the row below, in
+            // front of or behind the loop below that the slip carries up.
+            let y = 0.55;
+            for (i, p) in kp.iter_mut().enumerate() {
+                let x = (2 * i + 1) as f32 / (2 * KEY_POINTS) as f32;
+                *p = own.n3 + x * (own.n2 - own.n3) + y * (own.n0 - own.n3);
+            }
+            let side = if yarn_front { 1.0 } else { -1.0 };
+            lambdas = [side * offsets.shape(Shape::Float); KEY_POINTS];
+        }
+    }
+    if this.land_layer != 0 {
+        // A leaning or gathered loop passes the loops it crosses in front or behind.
+        let layer = f32::from(this.land_layer);
+        let (bottom, top) = (offsets.shape(Shape::PushBottom), offsets.shape(Shape::PushTop));
+        // At its feet a loop is still held by the head below it: a loop behind must not be
+        // pushed back through that head, so only loops in front move out there.
+        lambdas[1] += layer.max(0.0) * bottom;
+        lambdas[5] += layer.max(0.0) * bottom;
+        lambdas[2] += layer * top;
+        lambdas[4] += layer * top;
+        lambdas[3] += layer * offsets.shape(Shape::PushHead);
+    }
+    if dest != w as isize {
+        // A loop leaning across columns is stretched thin: its legs would lie nearly on top of
+        // each other seen from the front, so they stand one behind the other instead.
+        let (bottom, top) = (offsets.shape(Shape::SplitBottom), offsets.shape(Shape::SplitTop));
+        lambdas[1] += bottom;
+        lambdas[5] -= bottom;
+        lambdas[2] += top;
+        lambdas[4] -= top;
+    }
+    lattice.keep_on_fabric(&mut kp);
+    std::array::from_fn(|i| Vec3::new(kp[i].x, kp[i].y, lambdas[i]))
+}
