@@ -130,7 +130,10 @@ pub fn crossing_order(
     let mut grid: std::collections::HashMap<(i64, i64), Vec<usize>> =
         std::collections::HashMap::new();
     for (i, s) in segs.iter().enumerate() {
-        let (lo, hi) = (s.a.truncate().min(s.b.truncate()), s.a.truncate().max(s.b.truncate()));
+        let (lo, hi) = (
+            s.a.truncate().min(s.b.truncate()),
+            s.a.truncate().max(s.b.truncate()),
+        );
         let (k0, k1) = (key(lo), key(hi));
         for x in k0.0..=k1.0 {
             for y in k0.1..=k1.1 {
@@ -142,7 +145,10 @@ pub fn crossing_order(
     let mut result = CrossingOrder::default();
     let mut seen = std::collections::HashSet::new();
     for (i, s) in segs.iter().enumerate() {
-        let (lo, hi) = (s.a.truncate().min(s.b.truncate()), s.a.truncate().max(s.b.truncate()));
+        let (lo, hi) = (
+            s.a.truncate().min(s.b.truncate()),
+            s.a.truncate().max(s.b.truncate()),
+        );
         let (k0, k1) = (key(lo), key(hi));
         for x in k0.0..=k1.0 {
             for y in k0.1..=k1.1 {
@@ -204,7 +210,7 @@ fn intersect(a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> Option<(f32, f32)> {
     let t = (q - p).perp_dot(s) / denom;
     let u = (q - p).perp_dot(r) / denom;
     let inside = |x: f32| (1e-4..=1.0 - 1e-4).contains(&x);
-    (inside(t) && inside(u)).then(|| (a0.z + t * (a1.z - a0.z), b0.z + u * (b1.z - b0.z)))
+    (inside(t) && inside(u)).then_some((a0.z + t * (a1.z - a0.z), b0.z + u * (b1.z - b0.z)))
 }
 
 /// Whether `a` should be in front of `b` where they cross, if the pattern decides it.

@@ -17,7 +17,9 @@ pub enum Instruction {
     /// `p tbl`
     PurlTbl,
     /// `sl1 wyib` / `sl1 wyif`: slipped purlwise with the yarn in back or in front.
-    Slip { yarn_front: bool },
+    Slip {
+        yarn_front: bool,
+    },
     /// `yo`
     YarnOver,
     /// `m1l`

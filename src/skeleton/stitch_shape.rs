@@ -94,10 +94,7 @@ pub fn stitch_key_points(
     let dest = landing(lattice, pattern.width(), this, w);
     // A slipped stitch above carries this loop up one more row (where there is one).
     let rise = usize::from(this.rise > 0 && course + 1 < lattice.courses);
-    let above = pattern.stitch(
-        course + 1 + rise,
-        dest.rem_euclid(wales as isize) as usize,
-    );
+    let above = pattern.stitch(course + 1 + rise, dest.rem_euclid(wales as isize) as usize);
     let own = tile_at(lattice, course, w as isize + unwrap);
     let top = tile_at(lattice, course + rise, dest + unwrap);
     let bottom_kp = key_points(&own);
@@ -117,11 +114,16 @@ pub fn stitch_key_points(
     match this.form {
         Form::Plain => {}
         Form::Bobble => {
-            // The knot of extra loops worked into this stitch stands off the front: its loop
-            // is carried out by BOBBLE_HEIGHT at the top and half that at the feet.
+            // The knot of extra loops worked into this stitch stands off the front: its legs
+            // bulge out by BOBBLE_HEIGHT at their tops (half that at their feet), while its
+            // head stays where the stitch above is pulled through it.
             let h = BOBBLE_HEIGHT * offsets.diameter;
-            for (i, l) in lambdas.iter_mut().enumerate().skip(1) {
-                *l += if i == 1 || i == 5 { 0.5 * h } else { h };
+            for (i, l) in lambdas.iter_mut().enumerate() {
+                *l += match i {
+                    1 | 5 => 0.5 * h,
+                    2 | 4 => h,
+                    _ => 0.0,
+                };
             }
         }
         Form::Twisted => {
@@ -157,7 +159,10 @@ pub fn stitch_key_points(
     if this.land_layer != 0 {
         // A leaning or gathered loop passes the loops it crosses in front or behind.
         let layer = f32::from(this.land_layer);
-        let (bottom, top) = (offsets.shape(Shape::PushBottom), offsets.shape(Shape::PushTop));
+        let (bottom, top) = (
+            offsets.shape(Shape::PushBottom),
+            offsets.shape(Shape::PushTop),
+        );
         // At its feet a loop is still held by the head below it: a loop behind must not be
         // pushed back through that head, so only loops in front move out there.
         lambdas[1] += layer.max(0.0) * bottom;
@@ -169,7 +174,10 @@ pub fn stitch_key_points(
     if dest != w as isize {
         // A loop leaning across columns is stretched thin: its legs would lie nearly on top of
         // each other seen from the front, so they stand one behind the other instead.
-        let (bottom, top) = (offsets.shape(Shape::SplitBottom), offsets.shape(Shape::SplitTop));
+        let (bottom, top) = (
+            offsets.shape(Shape::SplitBottom),
+            offsets.shape(Shape::SplitTop),
+        );
         lambdas[1] += bottom;
         lambdas[5] -= bottom;
         lambdas[2] += top;
