@@ -161,6 +161,9 @@ class Knit:
     ) -> None: ...
     def build(self, surface: GridSurface | MeshSurface) -> KnitResult:
         """The whole result for `surface` (the one knitted, or it deformed)."""
+    def crossing_order(self, surface: GridSurface | MeshSurface) -> tuple[int, int, int]:
+        """(decided, agree, undecided) crossings of the yarn on `surface`: at `agree` of the
+        `decided` ones the yarn in front is the one the stitch pattern says."""
     def positions(
         self,
         surface: GridSurface | MeshSurface,

@@ -723,6 +723,19 @@ impl PyKnit {
         to_result(py, out)
     }
 
+    /// The interlock-topology metric on `surface`: `(decided, agree, undecided)` crossings,
+    /// where `agree` of the `decided` ones have in front the yarn the pattern says.
+    fn crossing_order(
+        &self,
+        py: Python<'_>,
+        surface: &Bound<'_, PyAny>,
+    ) -> PyResult<(usize, usize, usize)> {
+        let surf = AnySurface::from_py(surface)?;
+        let knit = self.inner.clone();
+        let c = guarded(py, move || knit.crossing_order(surf.as_dyn()))?;
+        Ok((c.decided, c.agree, c.undecided))
+    }
+
     /// Vertex positions only, `(V, 3)` float32, for `surface` in a new pose: bit-identical
     /// to `build(surface).vertices`. With `out` (a writable C-contiguous float32 `(V, 3)`
     /// array) they are written there and `out` is returned: no allocation per frame.

@@ -78,3 +78,32 @@ def test_every_preset_is_in_the_pattern_menu(core: ModuleType) -> None:
         assert name in items
         assert items[name] == properties._PRESET_LABELS[name][0], name
     assert "FILE" in items and "CUSTOM" in items
+
+
+def grid_mesh() -> bpy.types.Object:
+    """A flat UV-mapped grid (a "UV surface")."""
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=8, y_subdivisions=8, size=1.0)
+    return bpy.context.active_object
+
+
+@pytest.mark.parametrize("surface", ["nurbs", "uv_mesh"])
+def test_every_preset_knits_with_its_crossings_the_right_way_round(
+    api: ModuleType, core: ModuleType, surface: str
+) -> None:
+    """Every preset knits from the operator on a NURBS surface and on a UV mesh, and at every
+    crossing the pattern decides the yarn in front is the one it says (DESIGN.md section 7)."""
+    make = nurbs_patch if surface == "nurbs" else grid_mesh
+    for name in core.Pattern.presets():
+        source = make()
+        settings = {**SMALL, "courses": 12, "wales": 24, "detail_mode": "FULL"}
+        assert bpy.ops.object.knitwear_knit(**settings, pattern=name) == {"FINISHED"}, name
+        knit = bpy.context.active_object
+        assert len(knit.data.polygons) > 0, name
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        sampled = api.sample_source(knit, bpy.context, depsgraph)
+        decided, agree, _ = api.bind(knit, sampled, bpy.context.scene).crossing_order(
+            sampled.surface
+        )
+        assert decided > 0 and agree == decided, f"{name} on the {surface}: {agree}/{decided}"
+        bpy.data.objects.remove(knit)
+        bpy.data.objects.remove(source)
