@@ -62,7 +62,7 @@ pub enum Shape {
 pub const SHAPE_COEFFICIENTS: usize = 7;
 
 /// Where the tuning of the shape coefficients starts.
-pub const DEFAULT_SHAPE: [f32; SHAPE_COEFFICIENTS] = [0.5, 0.5, 0.25, 0.2, 0.2, 0.5, 1.5];
+pub const DEFAULT_SHAPE: [f32; SHAPE_COEFFICIENTS] = [0.5, 0.5, 0.5, 0.2, 0.2, 0.75, 1.5];
 
 /// Number of tuned coefficients.
 pub const COEFFICIENTS: usize = 7;
