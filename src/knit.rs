@@ -407,7 +407,11 @@ impl PreparedKnit {
         let (full_pieces, built, built_count) = run_in_pool(p.threads, || {
             let built = built_stitches(surface, &lattice);
             let count = built.iter().filter(|b| **b).count();
-            (yarn_pieces(&lattice, &built), built, count)
+            (
+                with_floats(yarn_pieces(&lattice, &built), &lattice, &built, p),
+                built,
+                count,
+            )
         })?;
         let triangles_full_detail: usize = full_pieces
             .iter()
@@ -433,7 +437,7 @@ impl PreparedKnit {
                 let reach = radius * (3.0 + p.fluffiness);
                 let levels = stitch_levels(surface, &lattice, &built, d, reach)?;
                 let kept: Vec<bool> = levels.iter().map(|l| l.is_built()).collect();
-                let pieces = yarn_pieces(&lattice, &kept);
+                let pieces = with_floats(yarn_pieces(&lattice, &kept), &lattice, &kept, p);
                 let spl = |level: Level| d.level_settings(level, full).samples_per_loop;
                 let spans: Vec<Span> = pieces
                     .par_iter()
@@ -663,7 +667,13 @@ impl PreparedKnit {
         let normals = &cl.normals[base..base + n];
         let owner = &cl.owner[base..base + n];
         let wales = self.lattice.wales;
-        let color_of = |course: usize, wale: usize| self.stitch_color(course, wale);
+        // A float of stranded colourwork is its own colour, not the stitches' it passes.
+        let float = pc.float_color.and_then(|i| {
+            let palette = self.params.colors.as_ref()?.palette();
+            palette.get(usize::from(i)).copied()
+        });
+        let color_of =
+            |course: usize, wale: usize| float.unwrap_or_else(|| self.stitch_color(course, wale));
         let settings = &self.level_bundle[sp.level as usize];
         let whole = sp.first == 0 && sp.rings == n && (sp.closed || sp.last + 1 == n);
         if whole {
@@ -925,6 +935,22 @@ pub fn measure(out: &KnitOutput) -> (f32, f32) {
 
 /// See [`KnitStats::topology_key`]: a SplitMix64 chain over the structure that fixes the
 /// buffers' layout.
+/// `pieces` and, for a palette colour chart (not an image), the floats of stranded
+/// colourwork behind them ([`crate::skeleton::floats`]).
+fn with_floats(
+    mut pieces: Vec<YarnPiece>,
+    lattice: &Lattice,
+    built: &[bool],
+    p: &KnitParams,
+) -> Vec<YarnPiece> {
+    if let (Some(colors), None) = (&p.colors, &p.color_image) {
+        pieces.extend(crate::skeleton::floats::float_pieces(
+            lattice, built, colors,
+        ));
+    }
+    pieces
+}
+
 fn topology_key(ring_segments: usize, pieces: &[YarnPiece], samples: &[usize]) -> u64 {
     let mix = |h: u64, x: u64| crate::geometry::stitch_seed(h, x as usize, 0x4b4e_4954);
     let mut h = mix(0x6b6e_6974_7765_6172, ring_segments as u64);

@@ -177,7 +177,7 @@ const SHORT_OF_TARGET: &[(&str, f32)] = &[
     ("feather_and_fan", 0.29),
     ("eyelet_rows", 0.63),
     ("lace_diamond", 0.55),
-    ("bobbles", 0.47),
+    ("bobbles", 0.44),
     ("linen_stitch", 0.93),
 ];
 
@@ -228,4 +228,47 @@ fn every_preset_crosses_as_its_pattern_says() {
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// Stranded colourwork: a colour skipped between two of its stitches floats behind them.
+#[test]
+fn fair_isle_floats_run_behind_the_fabric_in_their_own_colour() {
+    use knitwear::pattern::ColorPattern;
+    let palette = vec![[0.8, 0.1, 0.1], [0.9, 0.9, 0.8]];
+    // Row 1: three red, one cream; row 2: all cream (no floats).
+    let colors = ColorPattern::new(palette, "1111\n0001").unwrap();
+    let plane = PlaneSurface {
+        width: 0.08,
+        height: 0.05,
+    };
+    let stockinette = StitchPattern::preset("stockinette").unwrap();
+    let p = KnitParams {
+        courses: Some(8),
+        wales: Some(16),
+        threads: Some(2),
+        measure_clearance: true,
+        colors: Some(colors),
+        ..KnitParams::default()
+    };
+    let knit = PreparedKnit::new(&plane, &stockinette, &p).unwrap();
+    let out = knit.build(&plane).unwrap();
+    // 4 two-colour courses x (cream floats over 3 red stitches between cream ones: 3 per
+    // course, and red floats over the 1 cream stitch between red ones: 3 per course).
+    assert_eq!(out.stats.yarn_pieces, 8 + 4 * 6, "{:?}", out.stats);
+    // Floats are behind the surface (z < 0 on the plane), in the colour they carry.
+    let courses = &out.yarn_course;
+    assert_eq!(courses.len(), out.stats.yarn_pieces);
+    let (min, _) = out.stats.clearance.unwrap();
+    assert!(min >= 0.95, "clearance {min}");
+    let order = knit.crossing_order(&plane).unwrap();
+    assert!(
+        order.decided > 0 && order.agree == order.decided,
+        "{order:?}"
+    );
+    let behind = out
+        .positions
+        .chunks(3)
+        .filter(|v| v[2] < -2.0 * knit.yarn_radius())
+        .count();
+    assert!(behind > 0, "no yarn runs behind the fabric");
 }

@@ -64,6 +64,8 @@ struct Seg {
     course: usize,
     wale: usize,
     part: Part,
+    /// Part of a float of stranded colourwork.
+    float: bool,
 }
 
 /// Measures the crossing order of `pieces`, whose centrelines in (u, v, lambda) are
@@ -121,6 +123,7 @@ pub fn crossing_order(
                 course: pc.course,
                 wale: (pc.first_wale + stitch.min(pc.stitches.saturating_sub(1))) % wales,
                 part,
+                float: pc.float_color.is_some(),
             });
         }
     }
@@ -215,6 +218,10 @@ fn intersect(a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> Option<(f32, f32)> {
 
 /// Whether `a` should be in front of `b` where they cross, if the pattern decides it.
 fn expected(lattice: &Lattice, pattern: &StitchPattern, a: &Seg, b: &Seg) -> Option<bool> {
+    // A float of stranded colourwork runs behind the fabric.
+    if a.float || b.float {
+        return (a.float != b.float).then_some(b.float);
+    }
     let wales = lattice.wales;
     let cell = |s: &Seg| pattern.stitch(s.course, s.wale);
     let dest = |s: &Seg| {

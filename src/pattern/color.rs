@@ -107,8 +107,12 @@ impl ColorPattern {
 
     /// The colour of the stitch at (course, wale), the chart repeated in both directions.
     pub fn color(&self, course: usize, wale: usize) -> [f32; 3] {
-        let i = self.indices[(course % self.height) * self.width + wale % self.width];
-        self.palette[i as usize]
+        self.palette[self.index(course, wale) as usize]
+    }
+
+    /// The palette index of stitch (course, wale).
+    pub fn index(&self, course: usize, wale: usize) -> u8 {
+        self.indices[(course % self.height) * self.width + wale % self.width]
     }
 
     pub fn palette(&self) -> &[[f32; 3]] {

@@ -9,6 +9,7 @@
 //! flat surface it is the paper's 3D spline exactly (cardinal splines are affine-invariant).
 
 pub mod curvature;
+pub mod floats;
 mod key_points;
 mod offsets;
 mod spline;
@@ -38,6 +39,11 @@ pub struct YarnPiece {
     pub first_wale: usize,
     pub stitches: usize,
     pub closed: bool,
+    /// A float of stranded colourwork behind the stitches (see [`floats`]), in this palette
+    /// colour, rather than the course's own yarn.
+    pub float_color: Option<u8>,
+    /// A float's layer behind the fabric (0 nearest): its colour's rank among the row's.
+    pub float_layer: u8,
 }
 
 /// Spline sampling settings.
@@ -103,6 +109,8 @@ pub fn yarn_pieces(lattice: &Lattice, built: &[bool]) -> Vec<YarnPiece> {
                 first_wale: 0,
                 stitches: wales,
                 closed: true,
+                float_color: None,
+                float_layer: 0,
             });
             continue;
         }
@@ -124,6 +132,8 @@ pub fn yarn_pieces(lattice: &Lattice, built: &[bool]) -> Vec<YarnPiece> {
                         first_wale: s,
                         stitches: w - s,
                         closed: false,
+                        float_color: None,
+                        float_layer: 0,
                     });
                     run_start = None;
                 }
@@ -141,6 +151,9 @@ pub fn piece_key_points(
     offsets: &NormalOffsets,
     piece: &YarnPiece,
 ) -> Vec<Vec3> {
+    if piece.float_color.is_some() {
+        return floats::float_key_points(lattice, piece, offsets.diameter);
+    }
     let mut out = Vec::with_capacity(piece.stitches * KEY_POINTS);
     for j in 0..piece.stitches {
         out.extend(stitch_key_points(
