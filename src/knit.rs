@@ -408,7 +408,7 @@ impl PreparedKnit {
             let built = built_stitches(surface, &lattice);
             let count = built.iter().filter(|b| **b).count();
             (
-                with_floats(yarn_pieces(&lattice, &built), &lattice, &built, p),
+                with_extras(yarn_pieces(&lattice, &built), &lattice, &built, pattern, p),
                 built,
                 count,
             )
@@ -437,7 +437,7 @@ impl PreparedKnit {
                 let reach = radius * (3.0 + p.fluffiness);
                 let levels = stitch_levels(surface, &lattice, &built, d, reach)?;
                 let kept: Vec<bool> = levels.iter().map(|l| l.is_built()).collect();
-                let pieces = with_floats(yarn_pieces(&lattice, &kept), &lattice, &kept, p);
+                let pieces = with_extras(yarn_pieces(&lattice, &kept), &lattice, &kept, pattern, p);
                 let spl = |level: Level| d.level_settings(level, full).samples_per_loop;
                 let spans: Vec<Span> = pieces
                     .par_iter()
@@ -933,16 +933,19 @@ pub fn measure(out: &KnitOutput) -> (f32, f32) {
     (c.min, c.p01)
 }
 
-/// See [`KnitStats::topology_key`]: a SplitMix64 chain over the structure that fixes the
-/// buffers' layout.
-/// `pieces` and, for a palette colour chart (not an image), the floats of stranded
-/// colourwork behind them ([`crate::skeleton::floats`]).
-fn with_floats(
+/// `pieces` and the extra pieces of yarn the pattern asks for: the balls of its bobbles
+/// ([`crate::skeleton::bobbles`]) and, for a palette colour chart (not an image), the floats
+/// of stranded colourwork ([`crate::skeleton::floats`]).
+fn with_extras(
     mut pieces: Vec<YarnPiece>,
     lattice: &Lattice,
     built: &[bool],
+    pattern: &StitchPattern,
     p: &KnitParams,
 ) -> Vec<YarnPiece> {
+    pieces.extend(crate::skeleton::bobbles::bobble_pieces(
+        lattice, built, pattern,
+    ));
     if let (Some(colors), None) = (&p.colors, &p.color_image) {
         pieces.extend(crate::skeleton::floats::float_pieces(
             lattice, built, colors,
@@ -951,6 +954,8 @@ fn with_floats(
     pieces
 }
 
+/// See [`KnitStats::topology_key`]: a SplitMix64 chain over the structure that fixes the
+/// buffers' layout.
 fn topology_key(ring_segments: usize, pieces: &[YarnPiece], samples: &[usize]) -> u64 {
     let mix = |h: u64, x: u64| crate::geometry::stitch_seed(h, x as usize, 0x4b4e_4954);
     let mut h = mix(0x6b6e_6974_7765_6172, ring_segments as u64);

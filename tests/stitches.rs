@@ -177,7 +177,7 @@ const SHORT_OF_TARGET: &[(&str, f32)] = &[
     ("feather_and_fan", 0.29),
     ("eyelet_rows", 0.63),
     ("lace_diamond", 0.55),
-    ("bobbles", 0.44),
+    ("bobbles", 0.51),
     ("linen_stitch", 0.93),
 ];
 

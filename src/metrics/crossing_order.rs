@@ -66,6 +66,8 @@ struct Seg {
     part: Part,
     /// Part of a float of stranded colourwork.
     float: bool,
+    /// Part of a bobble's ball.
+    knot: bool,
 }
 
 /// Measures the crossing order of `pieces`, whose centrelines in (u, v, lambda) are
@@ -124,6 +126,7 @@ pub fn crossing_order(
                 wale: (pc.first_wale + stitch.min(pc.stitches.saturating_sub(1))) % wales,
                 part,
                 float: pc.float_color.is_some(),
+                knot: pc.bobble,
             });
         }
     }
@@ -218,9 +221,12 @@ fn intersect(a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> Option<(f32, f32)> {
 
 /// Whether `a` should be in front of `b` where they cross, if the pattern decides it.
 fn expected(lattice: &Lattice, pattern: &StitchPattern, a: &Seg, b: &Seg) -> Option<bool> {
-    // A float of stranded colourwork runs behind the fabric.
+    // A float of stranded colourwork runs behind the fabric, a bobble's ball in front of it.
     if a.float || b.float {
         return (a.float != b.float).then_some(b.float);
+    }
+    if a.knot || b.knot {
+        return (a.knot != b.knot).then_some(a.knot);
     }
     let wales = lattice.wales;
     let cell = |s: &Seg| pattern.stitch(s.course, s.wale);

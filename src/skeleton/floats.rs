@@ -58,6 +58,7 @@ pub fn float_pieces(lattice: &Lattice, built: &[bool], colors: &ColorPattern) ->
                             closed: false,
                             float_color: Some(c),
                             float_layer: rank as u8,
+                            bobble: false,
                         });
                     }
                 }

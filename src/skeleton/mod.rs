@@ -8,6 +8,7 @@
 //! cut chords), and a deforming surface moves the yarn without rebuilding the skeleton. On a
 //! flat surface it is the paper's 3D spline exactly (cardinal splines are affine-invariant).
 
+pub mod bobbles;
 pub mod curvature;
 pub mod floats;
 mod key_points;
@@ -44,6 +45,8 @@ pub struct YarnPiece {
     pub float_color: Option<u8>,
     /// A float's layer behind the fabric (0 nearest): its colour's rank among the row's.
     pub float_layer: u8,
+    /// The ball of a bobble worked into stitch (course, first_wale) (see [`bobbles`]).
+    pub bobble: bool,
 }
 
 /// Spline sampling settings.
@@ -111,6 +114,7 @@ pub fn yarn_pieces(lattice: &Lattice, built: &[bool]) -> Vec<YarnPiece> {
                 closed: true,
                 float_color: None,
                 float_layer: 0,
+                bobble: false,
             });
             continue;
         }
@@ -134,6 +138,7 @@ pub fn yarn_pieces(lattice: &Lattice, built: &[bool]) -> Vec<YarnPiece> {
                         closed: false,
                         float_color: None,
                         float_layer: 0,
+                        bobble: false,
                     });
                     run_start = None;
                 }
@@ -153,6 +158,9 @@ pub fn piece_key_points(
 ) -> Vec<Vec3> {
     if piece.float_color.is_some() {
         return floats::float_key_points(lattice, piece, offsets.diameter);
+    }
+    if piece.bobble {
+        return bobbles::bobble_key_points(lattice, piece, offsets.diameter);
     }
     let mut out = Vec::with_capacity(piece.stitches * KEY_POINTS);
     for j in 0..piece.stitches {

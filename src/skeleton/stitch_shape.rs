@@ -22,9 +22,9 @@ use crate::lattice::{Lattice, Tile};
 use crate::pattern::{Form, Stitch, StitchPattern};
 
 /// How far a bobble stands off the fabric, in yarn diameters.
-pub const BOBBLE_HEIGHT: f32 = 4.0;
+pub const BOBBLE_HEIGHT: f32 = 1.0;
 /// How far a bobble's legs swell sideways at their tops, in stitch widths.
-pub const BOBBLE_SPREAD: f32 = 0.3;
+pub const BOBBLE_SPREAD: f32 = 0.15;
 /// Where a yarn-over's legs end, as a fraction of the row up from the row's bottom: the hole
 /// under it.
 pub const YARN_OVER_LEG_BOTTOM: f32 = 0.45;
@@ -116,9 +116,9 @@ pub fn stitch_key_points(
     match this.form {
         Form::Plain => {}
         Form::Bobble => {
-            // The knot of extra loops worked into this stitch stands off the front as a ball:
-            // its legs swell out sideways and forwards (BOBBLE_HEIGHT at their tops, half that
-            // at their feet), while its head stays where the stitch above is pulled through.
+            // The stitch under a bobble's ball (`super::bobbles`) stands a little proud: its
+            // legs swell out sideways and forwards (BOBBLE_HEIGHT at their tops, half that at
+            // their feet), while its head stays where the stitch above is pulled through.
             let h = BOBBLE_HEIGHT * offsets.diameter;
             let across = BOBBLE_SPREAD * (own.n2 - own.n3);
             kp[2] -= across;
