@@ -10,8 +10,8 @@ use crate::budget::{self, OutputSize};
 use crate::detail::{piece_spans, stitch_levels, DetailParams, Level, LevelSettings, Span};
 use crate::error::{KnitError, Result};
 use crate::geometry::{
-    build_bundle, bundle_counts, BundleCounts, BundleSettings, EndTangents, PieceBuffers,
-    TopologyBuffers,
+    build_bundle, bundle_counts, piece_streams, stitch_seed, BundleCounts, BundleSettings,
+    EndTangents, FullDensityDraws, PieceBuffers, TopologyBuffers,
 };
 use crate::lattice::{Lattice, ROW_OVERHANG};
 use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
@@ -687,6 +687,7 @@ impl PreparedKnit {
                 sp.closed,
                 EndTangents::default(),
                 settings,
+                None,
                 bufs,
             );
             return;
@@ -714,8 +715,27 @@ impl PreparedKnit {
                 last: tangent_at(idx[sp.rings - 1]),
             }
         };
+        // The draws of the whole piece at full detail, so this span keeps a subset of its
+        // fibres (see `geometry::bundle`).
+        let seed = self.level_bundle[Level::Full as usize].seed;
+        let streams = piece_streams(n, |i| {
+            stitch_seed(seed, pc.course, (pc.first_wale + owner[i] as usize) % wales)
+        });
+        let draws = FullDensityDraws {
+            samples: &idx,
+            streams: &streams,
+            ring_segments: self.level_bundle[Level::Full as usize].ring_segments,
+        };
         build_bundle(
-            &pts, &nrm, &owner_of, &color_of, sp.closed, ends, settings, bufs,
+            &pts,
+            &nrm,
+            &owner_of,
+            &color_of,
+            sp.closed,
+            ends,
+            settings,
+            Some(&draws),
+            bufs,
         );
     }
 

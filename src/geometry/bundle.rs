@@ -19,6 +19,13 @@
 //! bits: uniform to 1 part in 1000 for up to 64 ring points), push (24 bits) and shade (24
 //! bits): the draws were most of the per-frame time of an animated knit when each took its own
 //! (45 ms -> 25 ms for the positions of 10,000 stitches on 2 cores).
+//!
+//! A span that keeps only some of its piece's full-density samples (a coarser level of
+//! camera-driven detail) takes its draws from that same full-density stream
+//! ([`FullDensityDraws`]): each of its triangles reuses the draw of the full-detail triangle
+//! that starts at the same sample and ring angle, and its apex keeps that triangle's ring
+//! angle, push and shade. A coarser level is so a subset of the fibres full detail builds, not
+//! a fresh random set, and the image changes only where fibres are dropped.
 
 use std::f32::consts::TAU;
 
@@ -125,12 +132,57 @@ pub struct EndTangents {
     pub last: Option<Vec3>,
 }
 
+/// Where a span's random draws come from when its rings sit on some of its piece's
+/// full-density samples (see the module docs). With `ring_segments` and every sample kept it
+/// gives exactly the draws of the whole piece's bundle.
+#[derive(Debug, Clone, Copy)]
+pub struct FullDensityDraws<'a> {
+    /// The full-density sample under each ring of the span.
+    pub samples: &'a [usize],
+    /// Every full-density sample of the piece: the seed of its stitch's stream
+    /// ([`stitch_seed`]) and its ring's slot in that stream (rings since the stitch began,
+    /// in the piece's sample order).
+    pub streams: &'a [(u64, u32)],
+    /// Points per ring at full detail.
+    pub ring_segments: usize,
+}
+
+/// Slots of a piece's full-density samples in their stitches' streams, as
+/// [`build_bundle`] draws them over the whole piece: `seed_of(i)` is sample `i`'s stream seed.
+pub fn piece_streams(samples: usize, seed_of: impl Fn(usize) -> u64) -> Vec<(u64, u32)> {
+    let mut out: Vec<(u64, u32)> = Vec::with_capacity(samples);
+    for i in 0..samples {
+        let seed = seed_of(i);
+        let slot = match out.last() {
+            Some(&(prev, slot)) if prev == seed => slot + 1,
+            _ => 0,
+        };
+        out.push((seed, slot));
+    }
+    out
+}
+
+/// The draws full detail makes at one ring of `m` points (slot `slot` of stream `seed`): `m`
+/// colour draws, then the ring pair's `2m` triangle draws, as [`build_bundle`] makes them.
+fn ring_draws((seed, slot): (u64, u32), m: usize, colours: &mut [u32], tris: &mut [u64]) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    // One u32 per colour draw and two per triangle draw: 5m words per ring.
+    rng.set_word_pos(5 * m as u128 * slot as u128);
+    for c in colours.iter_mut() {
+        *c = rng.next_u32();
+    }
+    for t in tris.iter_mut() {
+        *t = rng.next_u64();
+    }
+}
+
 /// Builds the bundle of one yarn piece into `out`.
 ///
 /// `points`/`normals`: the centreline and the surface normal under each sample; `owner[i]`:
 /// (course, wale) of the stitch that sample `i` belongs to; `color_of(course, wale)`: the
 /// stitch's linear RGB colour; `ends`: tangents for the end rings of a span (see
-/// [`EndTangents`]; the default for a whole piece).
+/// [`EndTangents`]; the default for a whole piece); `draws`: the full-density stream for a
+/// span of a piece (`None`: the piece's own samples, drawn in order).
 #[allow(clippy::too_many_arguments)]
 pub fn build_bundle(
     points: &[Vec3],
@@ -140,6 +192,7 @@ pub fn build_bundle(
     closed: bool,
     ends: EndTangents,
     settings: &BundleSettings,
+    draws: Option<&FullDensityDraws>,
     out: &mut PieceBuffers,
 ) {
     let m = settings.ring_segments;
@@ -155,8 +208,9 @@ pub fn build_bundle(
         })
         .unzip();
 
-    // Ring directions, kept for the apexes.
+    // Ring directions, kept for the apexes, and ring frames for apexes at full-detail angles.
     let mut dirs = vec![Vec3::ZERO; rings * m];
+    let mut frames = vec![(Vec3::ZERO, Vec3::ZERO); if draws.is_some() { rings } else { 0 }];
     for i in 0..rings {
         let tangent = match i {
             0 => ends.first,
@@ -167,6 +221,9 @@ pub fn build_bundle(
             Some(t) => frame_from_tangent(t, normals[i]),
             None => ring_frame(points, normals, i, closed),
         };
+        if let Some(f) = frames.get_mut(i) {
+            *f = (a, b);
+        }
         for k in 0..m {
             let d = cos[k] * a + sin[k] * b;
             dirs[i * m + k] = d;
@@ -193,11 +250,41 @@ pub fn build_bundle(
     };
 
     let apex_base = rings * m;
+    // A span's draws: the full-density stream's colour draws at each ring's sample (`mf`
+    // per ring) and the triangle draws of the full-detail ring pairs its pairs start from.
+    let mf = draws.map_or(m, |d| d.ring_segments);
+    let (full_cos, full_sin): (Vec<f32>, Vec<f32>) = (0..mf)
+        .map(|k| TAU * k as f32 / mf as f32)
+        .map(|a| {
+            let (s, c) = crate::portable_math::sin_cos(a);
+            (c, s)
+        })
+        .unzip();
+    // The full-detail ring point at (or just after) this level's point k.
+    let full_k = |k: usize| (k * mf + m / 2) / m % mf;
+    let mut span_colours = vec![0u32; if draws.is_some() { mf } else { 0 }];
+    let mut pair_draws = vec![0u64; if draws.is_some() { 2 * mf } else { 0 }];
+    let mut back_draws = pair_draws.clone();
+    let mut back_colours = span_colours.clone();
     let mut current: Option<(usize, usize)> = None;
     let mut rng = ChaCha8Rng::seed_from_u64(0);
     for i in 0..rings {
         let (course, wale) = owner(i);
-        if current != Some((course, wale)) {
+        if let Some(d) = draws {
+            let s = d.samples[i];
+            ring_draws(d.streams[s], mf, &mut span_colours, &mut pair_draws);
+            if i < pairs {
+                // Half 1 (ring j's edges, apexes on ring i) of full detail sits in the pair
+                // that ends at ring j's sample.
+                let n = d.streams.len();
+                let back = (d.samples[(i + 1) % rings] + n - 1) % n;
+                if back == s {
+                    back_draws.copy_from_slice(&pair_draws);
+                } else {
+                    ring_draws(d.streams[back], mf, &mut back_colours, &mut back_draws);
+                }
+            }
+        } else if current != Some((course, wale)) {
             current = Some((course, wale));
             rng = ChaCha8Rng::seed_from_u64(stitch_seed(settings.seed, course, wale));
         }
@@ -205,7 +292,11 @@ pub fn build_bundle(
         for k in 0..m {
             // Drawn whether or not colours are written, so the random stream (and with it
             // every apex position) is the same in a full build and a positions-only one.
-            let c = shade(rng.next_u32() as u64, color);
+            let bits = match draws {
+                Some(_) => span_colours[full_k(k)],
+                None => rng.next_u32(),
+            };
+            let c = shade(bits as u64, color);
             if let Some(colors) = out.colors.as_mut() {
                 colors[4 * (i * m + k)..4 * (i * m + k) + 4].copy_from_slice(&c);
             }
@@ -220,10 +311,18 @@ pub fn build_bundle(
             for k in 0..m {
                 let tri = i * 2 * m + half * m + k;
                 // One draw per triangle: 16 bits pick the apex, 24 the push, 24 the shade.
-                let bits = rng.next_u64();
-                let pick = (((bits & 0xFFFF) * m as u64) >> 16) as usize;
+                let bits = match draws {
+                    Some(_) if half == 0 => pair_draws[full_k(k)],
+                    Some(_) => back_draws[mf + full_k(k)],
+                    None => rng.next_u64(),
+                };
+                let pick = (((bits & 0xFFFF) * mf as u64) >> 16) as usize;
                 let push = 1.0 + settings.fluffiness * unit24(bits >> 16);
-                let apex_dir = dirs[apex_ring * m + pick];
+                let apex_dir = match frames.get(apex_ring) {
+                    // At the full-detail ring angle, in this ring's frame.
+                    Some(&(a, b)) => full_cos[pick] * a + full_sin[pick] * b,
+                    None => dirs[apex_ring * m + pick],
+                };
                 let apex = points[apex_ring] + r * push * apex_dir;
                 let av = apex_base + tri;
                 out.positions[3 * av..3 * av + 3].copy_from_slice(&apex.to_array());
@@ -265,6 +364,77 @@ pub fn build_bundle(
 mod tests {
     use super::*;
 
+    fn straight_yarn(
+        samples: &[usize],
+        m: usize,
+        draws: Option<&FullDensityDraws>,
+    ) -> (Vec<f32>, Vec<f32>) {
+        let points: Vec<Vec3> = samples
+            .iter()
+            .map(|&i| Vec3::new(i as f32, 0.0, 0.0))
+            .collect();
+        let normals = vec![Vec3::Z; samples.len()];
+        let settings = BundleSettings {
+            radius: 0.25,
+            ring_segments: m,
+            fluffiness: 0.8,
+            color_variation: 0.2,
+            seed: 9,
+        };
+        let counts = bundle_counts(samples.len(), m, false);
+        let mut positions = vec![0.0; 3 * counts.vertices];
+        let mut colors = vec![0.0; 4 * counts.vertices];
+        let mut bufs = PieceBuffers::positions_only(&mut positions);
+        bufs.colors = Some(&mut colors);
+        build_bundle(
+            &points,
+            &normals,
+            &|i| (0, samples[i] / 16),
+            &|_, _| [0.5, 0.5, 0.5],
+            false,
+            EndTangents::default(),
+            &settings,
+            draws,
+            &mut bufs,
+        );
+        (positions, colors)
+    }
+
+    /// Drawn from the full-density stream, a span that keeps every sample is the whole
+    /// piece's bundle bit for bit, and a coarser one keeps a subset of its fibres: each of
+    /// its triangles has the push and shade of the full-detail triangle at the same sample.
+    #[test]
+    fn spans_keep_a_subset_of_the_full_detail_fibres() {
+        let (n, m) = (64usize, 6usize);
+        let all: Vec<usize> = (0..n).collect();
+        let streams = piece_streams(n, |i| stitch_seed(9, 0, i / 16));
+        let whole = straight_yarn(&all, m, None);
+        let draws = FullDensityDraws {
+            samples: &all,
+            streams: &streams,
+            ring_segments: m,
+        };
+        assert_eq!(whole, straight_yarn(&all, m, Some(&draws)));
+
+        let coarse: Vec<usize> = (0..n).step_by(2).collect();
+        let (mc, rings) = (3usize, coarse.len());
+        let draws = FullDensityDraws {
+            samples: &coarse,
+            ..draws
+        };
+        let (pos, col) = straight_yarn(&coarse, mc, Some(&draws));
+        let push = |p: &[f32], av: usize| Vec3::new(0.0, p[3 * av + 1], p[3 * av + 2]).length();
+        for (i, &sample) in coarse.iter().enumerate().take(rings - 1) {
+            for k in 0..mc {
+                let tri = i * 2 * mc + k; // half 0: ring i's edges
+                let full_tri = sample * 2 * m + 2 * k; // full point 2k at mc = 3
+                let (av, fav) = (rings * mc + tri, n * m + full_tri);
+                assert!((push(&pos, av) - push(&whole.0, fav)).abs() < 1e-6);
+                assert_eq!(col[4 * av], whole.1[4 * fav], "shade of triangle {tri}");
+            }
+        }
+    }
+
     /// A straight yarn along x: every apex must lie on its ring's plane, pushed out between 1
     /// and 1 + fluffiness radii, and the picks must cover the ring evenly.
     #[test]
@@ -292,6 +462,7 @@ mod tests {
             false,
             EndTangents::default(),
             &settings,
+            None,
             &mut bufs,
         );
         let mut hits = vec![0usize; m];

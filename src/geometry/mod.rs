@@ -4,7 +4,7 @@ mod bundle;
 mod frames;
 
 pub use bundle::{
-    build_bundle, bundle_counts, stitch_seed, BundleCounts, BundleSettings, EndTangents,
-    PieceBuffers, TopologyBuffers,
+    build_bundle, bundle_counts, piece_streams, stitch_seed, BundleCounts, BundleSettings,
+    EndTangents, FullDensityDraws, PieceBuffers, TopologyBuffers,
 };
 pub use frames::{frame_from_tangent, ring_frame};
