@@ -11,8 +11,8 @@ so it fills the lower part of the frame and runs into the distance. The source w
 knitwear texture in every render, as auto detail leaves it.
 
 Knobs swept (each from the defaults, one at a time): samples per loop (6..24) and ring segments
-(3..8) at uniform full detail, fluff off, and auto detail with its three pixel thresholds
-scaled together (x0.25..x4) and with the texture level off. For each point:
+(3..8) at uniform full detail, fluff off, another seed, and auto detail with its three pixel
+thresholds scaled together (x0.5..x4) and with the texture level off. For each point:
 
 - time: seconds in the core (`Knit` + `build`, `KnitOutcome.core_seconds`) and click-to-mesh
   (`api.knit`: sampling, core, Blender mesh, and the knitwear texture where stitches are
@@ -23,7 +23,13 @@ scaled together (x0.25..x4) and with the texture level off. For each point:
   pixels per scene unit; a texture-level stitch counts its flattened relief, three yarn radii;
   the 99th percentile over the stitches in view;
 - image error: SSIM and PSNR of an EEVEE render (luminance) against the render at the highest
-  quality swept (uniform full detail, 24 samples per loop, 8 ring segments).
+  quality swept (uniform full detail, 24 samples per loop, 8 ring segments), and against
+  uniform full detail at the defaults (the issue's target). Renders are anti-aliased by 4 x 4
+  supersampling (`SUPERSAMPLE`: rendered at 3840 x 2160, one sample, box-filtered in linear
+  light to 960 x 540), so sub-pixel fibres average out as in a many-sample render;
+- the noise floor: full detail with another seed, which is as far from full detail as two
+  equally good knits are; each setting's 1 - SSIM is also printed as a fraction of the
+  floor's.
 
 Writes docs/charts/speed_accuracy_ssim.png (image error against click-to-mesh time),
 speed_accuracy_tessellation.png (tessellation error against triangles) and
@@ -54,12 +60,17 @@ Record = dict[str, Any]
 WIDTH, LENGTH = 0.2, 1.2
 COURSES, WALES = 336, 40
 RES = (960, 540)
+#: Anti-aliasing: each image pixel is the linear-light mean of SUPERSAMPLE x SUPERSAMPLE
+#: rendered pixels (one EEVEE sample each), so sub-pixel fibres average out as they do in a
+#: many-sample render; the detail thresholds are given in image pixels.
+SUPERSAMPLE = 4
 #: Dense samples per stitch of the spline the tessellation error is measured against.
 DENSE = 96
 #: The defaults (the operator's): what the charts mark.
 DEFAULTS = {"samples_per_loop": 16, "ring_segments": 6, "fluffiness": 0.5,
             "detail_full_px": 24.0, "detail_mid_px": 10.0, "detail_texture_px": 2.0}
 REFERENCE = {"detail_mode": "FULL", "samples_per_loop": 24, "ring_segments": 8}
+FLOOR = "full detail, another seed"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -95,13 +106,14 @@ def build_scene(quick: bool) -> tuple[Any, Any]:
     scene.world = world
     r = scene.render
     r.resolution_x, r.resolution_y = (RES[0] // 2, RES[1] // 2) if quick else RES
-    r.resolution_percentage = 100
+    r.resolution_percentage = 100 * SUPERSAMPLE
     try:
         r.engine = "BLENDER_EEVEE"  # Blender 5
     except TypeError:
         r.engine = "BLENDER_EEVEE_NEXT"  # Blender 4.2 to 4.5
-    # Software GL redraws every triangle per sample: two keep a sweep under about 15 minutes.
-    scene.eevee.taa_render_samples = 2
+    # Software GL redraws every triangle per sample; one sample at 4 x 4 the pixels is the
+    # cheaper way to 16 samples per image pixel (about 50 s a full-detail render here).
+    scene.eevee.taa_render_samples = 1
     scene.view_settings.view_transform = "Standard"
     r.image_settings.file_format = "PNG"
     bpy.context.view_layer.update()
@@ -109,13 +121,20 @@ def build_scene(quick: bool) -> tuple[Any, Any]:
 
 
 def render(path: Path) -> np.ndarray:
-    """Renders the scene to ``path``; returns its luminance, (H, W) float in [0, 1]."""
+    """Renders the scene, box-filters it down by SUPERSAMPLE in linear light and writes the
+    result to ``path``; returns its luminance, (H, W) float in [0, 1]."""
     import bpy
 
     bpy.context.scene.render.filepath = str(path)
     bpy.ops.render.render(write_still=True)
     rgb = np.asarray(Image.open(path).convert("RGB"), dtype=np.float64) / 255.0
-    return rgb @ np.array([0.2126, 0.7152, 0.0722])
+    lin = np.where(rgb <= 0.04045, rgb / 12.92, ((rgb + 0.055) / 1.055) ** 2.4)
+    k = SUPERSAMPLE
+    h, w = lin.shape[0] // k, lin.shape[1] // k
+    lin = lin[:h * k, :w * k].reshape(h, k, w, k, 3).mean(axis=(1, 3))
+    srgb = np.where(lin <= 0.0031308, lin * 12.92, 1.055 * lin ** (1 / 2.4) - 0.055)
+    Image.fromarray(np.clip(srgb * 255 + 0.5, 0, 255).astype(np.uint8)).save(path)
+    return srgb @ np.array([0.2126, 0.7152, 0.0722])
 
 
 # ---------------------------------------------------------------------------------------------
@@ -259,6 +278,9 @@ def sweep_points(quick: bool) -> list[tuple[str, str, dict[str, Any]]]:
         if m != 6:
             pts.append(("ring segments (full detail)", f"{m}", full | {"ring_segments": m}))
     pts.append(("fluff off (full detail)", "no fluff", full | {"fluffiness": 0.0}))
+    # The noise floor: the same knit with another seed, as different as two equally good
+    # renders of it can be.
+    pts.append((FLOOR, "seed 2", full | {"seed": 2}))
     for k in ([0.5, 1.0] if quick else [0.5, 1.0, 2.0, 4.0]):
         pts.append(("auto detail, thresholds x k", f"x{k:g}", {
             "detail_mode": "AUTO", "detail_full_px": 24.0 * k, "detail_mid_px": 10.0 * k,
@@ -276,10 +298,15 @@ def measure(api: Any, strip: Any, tess: Tessellation, settings: dict[str, Any], 
 
     outcomes: list[Any] = []
 
+    # The thresholds are image pixels; the render the add-on sizes them by is SUPERSAMPLE
+    # times larger.
+    knit_settings = merged | {k: merged[k] * SUPERSAMPLE for k in (
+        "detail_full_px", "detail_mid_px", "detail_texture_px")}
+
     def run() -> None:
         if outcomes:
             _remove(outcomes[-1].object)
-        outcomes.append(api.knit(strip, **merged))
+        outcomes.append(api.knit(strip, **knit_settings))
 
     seconds = median_seconds(run, repeats)
     outcome = outcomes[-1]
@@ -308,6 +335,70 @@ def _remove(obj: Any) -> None:
 
 
 # ---------------------------------------------------------------------------------------------
+# Flicker
+
+#: Frames of the camera move the flicker is measured over, and the dolly per frame (metres,
+#: along the strip).
+FLICKER_FRAMES = 3
+FLICKER_STEP = 0.01
+
+
+def flicker(api: Any, strip: Any, cam: Any, out: Path) -> None:
+    """Flicker over a short dolly of the camera along the strip: each knit's frame-to-frame
+    change of the image, against full detail's (what the motion itself changes). Printed as
+    the mean absolute luminance difference, per frame pair, between the two changes. Auto
+    detail as the add-on knits an animation (levels from every frame, pinned) and, to show
+    what pinning buys, knitted again at every frame from that frame's view alone."""
+    import bpy
+    from mathutils import Vector
+
+    scene = bpy.context.scene
+    start = cam.location.copy()
+    for f in range(1, FLICKER_FRAMES + 1):
+        cam.location = start + Vector((0.0, (f - 1) * FLICKER_STEP, 0.0))
+        cam.keyframe_insert("location", frame=f)
+    scene.frame_start, scene.frame_end = 1, FLICKER_FRAMES
+    full = base_settings() | DEFAULTS | {"detail_mode": "FULL"}
+    auto = base_settings() | DEFAULTS | {"detail_mode": "AUTO"}
+    auto |= {k: auto[k] * SUPERSAMPLE for k in
+             ("detail_full_px", "detail_mid_px", "detail_texture_px")}
+
+    def frames(name: str, settings: dict[str, Any], per_frame: bool) -> list[np.ndarray]:
+        images, obj, levels = [], None, []
+        for f in range(1, FLICKER_FRAMES + 1):
+            scene.frame_set(f)
+            if per_frame or obj is None:
+                if obj is not None:
+                    _remove(obj)
+                if per_frame:  # this frame's view only
+                    scene.frame_start = scene.frame_end = f
+                outcome = api.knit(strip, **settings)
+                scene.frame_start, scene.frame_end = 1, FLICKER_FRAMES
+                obj = outcome.object
+                levels.append(outcome.levels)
+            images.append(render(out / f"flicker_{name}_{f}.png"))
+        _remove(obj)
+        if per_frame:
+            print(f"  {name}: levels per frame {levels}")
+        return images
+
+    ref = frames("full", full, False)
+    motion = np.mean([np.abs(b - a).mean() for a, b in zip(ref[:-1], ref[1:], strict=True)])
+    print(f"\nflicker over a {FLICKER_FRAMES}-frame dolly of {FLICKER_STEP * 100:g} cm a frame "
+          f"(full detail's own frame-to-frame change: {motion:.4f}):")
+    for name, settings, per_frame in (("auto, pinned", auto, False),
+                                      ("auto, re-knit every frame", auto, True)):
+        imgs = frames(name.replace(" ", "_").replace(",", ""), settings, per_frame)
+        d = [np.abs((b - a) - (rb - ra)).mean()
+             for a, b, ra, rb in zip(imgs[:-1], imgs[1:], ref[:-1], ref[1:], strict=True)]
+        print(f"  {name:28s} flicker {np.mean(d):.4f} ({np.mean(d) / motion:.2f} of the "
+              f"motion's change) per pair {[round(float(x), 4) for x in d]}")
+    cam.animation_data_clear()
+    cam.location = start
+    scene.frame_set(1)
+
+
+# ---------------------------------------------------------------------------------------------
 # Charts (Pillow, as chart_breakage.py: CI needs no matplotlib)
 
 WHITE, INK, GRID, GREY = (255, 255, 255), (30, 30, 30), (225, 225, 225), (120, 120, 120)
@@ -315,6 +406,7 @@ COLORS = {
     "samples per loop (full detail)": (40, 100, 200),
     "ring segments (full detail)": (230, 130, 20),
     "fluff off (full detail)": (140, 60, 170),
+    FLOOR: (120, 120, 120),
     "auto detail, thresholds x k": (30, 150, 70),
     "auto detail, no texture level": (200, 40, 40),
     "reference": (0, 0, 0),
@@ -470,10 +562,14 @@ def main() -> None:
     k_uniform = next(i for i, r in enumerate(records) if r["series"].startswith("samples")
                      and r["label"] == "16")
     uniform = records[k_uniform]
-    print("\nagainst the full-detail render at the defaults (the issue's target):")
+    floor = ssim(images[next(i for i, r in enumerate(records) if r["series"] == FLOOR)],
+                 images[k_uniform])
+    print("\nagainst the full-detail render at the defaults (the issue's target); 'of floor':"
+          f" 1 - SSIM as a fraction of the seed-to-seed 1 - SSIM (floor SSIM {floor:.4f}):")
     for r, image in zip(records, images, strict=True):
         r["ssim_full"] = ssim(image, images[k_uniform])
         print(f"  {r['series']:32s} {r['label']:10s} SSIM {r['ssim_full']:.4f}  "
+              f"of floor {(1 - r['ssim_full']) / (1 - floor):.2f}  "
               f"PSNR {psnr(image, images[k_uniform]):5.1f}  triangles {r['triangles']:,}")
     note = (f"{COURSES} x {WALES} stitches receding from a 35 mm camera, {RES[0]} x {RES[1]}; "
             f"default auto detail: {default['triangles']:,} triangles vs "
@@ -503,6 +599,8 @@ def main() -> None:
           f"against full detail {default['ssim_full']:.4f}; click "
           f"{default['click']:.2f} s vs {uniform['click']:.2f} s; core {default['core']:.3f} s "
           f"vs {uniform['core']:.3f} s")
+    if not args.quick:
+        flicker(api, strip, cam, renders)
     print(f"charts in {args.out}, renders in {renders}")
 
 
