@@ -142,7 +142,11 @@ def _colors(settings: Mapping[str, Any]) -> dict[str, Any]:
             )
         }
     if mode == "CHART":
-        return {"colors": knitwear.ColorPattern(palette, _chart_text(settings["color_chart"]))}
+        chart = str(settings["color_chart"]).strip()
+        if chart in knitwear.ColorPattern.presets():
+            # A named colourwork chart (e.g. "fair_isle_band") in the yarn colours.
+            return {"colors": knitwear.ColorPattern.preset(chart, palette)}
+        return {"colors": knitwear.ColorPattern(palette, _chart_text(chart))}
     if mode == "IMAGE":
         name = settings["color_image_name"]
         image = bpy.data.images.get(name) if name else None

@@ -305,7 +305,9 @@ class KnitSettingsMixin:
     color_chart: StringProperty(
         name="Colour Chart",
         description="Colourwork chart of colour numbers (0 = Colour 1 .. 3 = Colour 4), one "
-        "line per row (top line = top row); rows may also be separated with ';'",
+        "line per row (top line = top row); rows may also be separated with ';'. Or the name "
+        "of a colourwork chart: fair_isle_band. A colour skipped between two of its stitches "
+        "floats behind them, as in stranded knitting",
         default="0001;0010;0100;1000",
     )
     stripe_height: IntProperty(

@@ -107,3 +107,17 @@ def test_every_preset_knits_with_its_crossings_the_right_way_round(
         assert decided > 0 and agree == decided, f"{name} on the {surface}: {agree}/{decided}"
         bpy.data.objects.remove(knit)
         bpy.data.objects.remove(source)
+
+
+def test_fair_isle_band_by_name_gives_floats_behind(api: ModuleType, core: ModuleType) -> None:
+    """The Colour Chart field takes a named colourwork chart; its rows of two colours carry
+    floats behind the fabric: more yarn pieces than courses, in the chart's colours."""
+    source = nurbs_patch()
+    settings = {**SMALL, "courses": 16, "wales": 16, "pattern": "fair_isle"}
+    plain = api.knit_result(source, **settings)
+    band = api.knit_result(source, **settings, color_mode="CHART", color_chart="fair_isle_band")
+    assert plain.stats["yarn_pieces"] == 16
+    assert band.stats["yarn_pieces"] > 16
+    assert bpy.ops.object.knitwear_knit(
+        **settings, color_mode="CHART", color_chart="fair_isle_band"
+    ) == {"FINISHED"}
