@@ -118,22 +118,7 @@ pub fn segment_clearances(
     neighbour_arclength: f32,
     cap: f32,
 ) -> Option<Vec<f32>> {
-    let segments: usize = yarns.iter().map(segment_count).sum();
-    let positive = |x: f32| x.is_finite() && x > 0.0;
-    if !positive(diameter) || !positive(cap) || neighbour_arclength.is_nan() {
-        return None;
-    }
-    if yarns
-        .iter()
-        .any(|y| y.points.iter().any(|p| !p.is_finite()))
-    {
-        return None;
-    }
-    let radius = cap * diameter;
-    // Segment and cell ids are u32; four billion segments would not fit in memory anyway.
-    if !radius.is_finite() || u32::try_from(segments).is_err() {
-        return None;
-    }
+    let Measurable { segments, radius } = measurable(yarns, diameter, neighbour_arclength, cap)?;
     if segments == 0 {
         return Some(Vec::new());
     }
@@ -147,6 +132,92 @@ pub fn segment_clearances(
             .map(|i| (index.nearest(i).min(radius) / diameter).min(cap))
             .collect(),
     )
+}
+
+/// Two segments nearer each other than asked (see [`close_pairs`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClosePair {
+    /// The segments, `a < b`, numbered as in [`segment_clearances`].
+    pub a: usize,
+    pub b: usize,
+    /// Where the closest points sit along `a` and `b` (0 at the first point, 1 at the next).
+    pub s: f32,
+    pub t: f32,
+    /// Their distance, in diameters.
+    pub distance: f32,
+}
+
+/// Every pair of segments nearer than `within` diameters that [`clearance`] compares (other
+/// yarns; the same yarn beyond the exclusion, doubly critical pairs only), each once, in
+/// order of `a` then of the spatial index (the same for any thread count). `None` where
+/// `clearance` reports NaN. For pushing yarns apart where they come too close.
+pub fn close_pairs(
+    yarns: &[YarnPolyline],
+    diameter: f32,
+    neighbour_arclength: f32,
+    within: f32,
+) -> Option<Vec<ClosePair>> {
+    let Measurable { segments, radius } = measurable(yarns, diameter, neighbour_arclength, within)?;
+    if segments == 0 {
+        return Some(Vec::new());
+    }
+    let exclusion = f64::from(neighbour_arclength.max(0.0)) * f64::from(diameter);
+    let index = SegmentIndex::new(yarns, diameter, radius, exclusion);
+    Some(
+        (0..segments)
+            .into_par_iter()
+            .with_min_len(256)
+            .flat_map_iter(|a| {
+                let mut found = Vec::new();
+                index.within(a, |b, s, t, d| {
+                    if b > a {
+                        found.push(ClosePair {
+                            a,
+                            b,
+                            s,
+                            t,
+                            distance: d / diameter,
+                        });
+                    }
+                });
+                found
+            })
+            .collect(),
+    )
+}
+
+/// Segment count and search radius (scene units) of a measurable input.
+struct Measurable {
+    segments: usize,
+    radius: f32,
+}
+
+/// Checks the inputs of [`segment_clearances`] and [`close_pairs`]: `None` where they are
+/// not measurable (a diameter or reach that is not positive and finite, a NaN exclusion, a
+/// point that is not finite, more segments than u32 ids).
+fn measurable(
+    yarns: &[YarnPolyline],
+    diameter: f32,
+    neighbour_arclength: f32,
+    reach: f32,
+) -> Option<Measurable> {
+    let segments: usize = yarns.iter().map(segment_count).sum();
+    let positive = |x: f32| x.is_finite() && x > 0.0;
+    if !positive(diameter) || !positive(reach) || neighbour_arclength.is_nan() {
+        return None;
+    }
+    if yarns
+        .iter()
+        .any(|y| y.points.iter().any(|p| !p.is_finite()))
+    {
+        return None;
+    }
+    let radius = reach * diameter;
+    // Segment and cell ids are u32; four billion segments would not fit in memory anyway.
+    if !radius.is_finite() || u32::try_from(segments).is_err() {
+        return None;
+    }
+    Some(Measurable { segments, radius })
 }
 
 fn segment_count(y: &YarnPolyline) -> usize {
@@ -487,6 +558,52 @@ impl SegmentIndex {
             Relation::Neighbour
         } else {
             Relation::SameYarn
+        }
+    }
+
+    /// Calls `found(j, s, t, distance)` for every segment `j` nearer segment `i` than
+    /// `radius` that [`clearance`] compares with it (each once, in cell order).
+    fn within(&self, i: usize, mut found: impl FnMut(usize, f32, f32, f32)) {
+        let [a, b] = self.ends[i];
+        let r = Vec3::splat(self.radius);
+        let (lo, hi) = (a.min(b), a.max(b));
+        let (c0, c1) = (self.cell_of(lo - r), self.cell_of(hi + r));
+        let r2 = self.radius * self.radius;
+        let mut seen = Vec::new();
+        for x in c0[0].max(0)..=c1[0].min(self.top[0]) {
+            for y in c0[1].max(0)..=c1[1].min(self.top[1]) {
+                for z in c0[2].max(0)..=c1[2].min(self.top[2]) {
+                    seen.extend_from_slice(self.lookup([x, y, z]));
+                }
+            }
+        }
+        // A segment split over several cells is listed in each: visit it once.
+        seen.sort_unstable();
+        seen.dedup();
+        for j in seen {
+            let j = j as usize;
+            let [p, q] = self.ends[j];
+            let gap = (p.min(q) - hi).max(lo - p.max(q)).max(Vec3::ZERO);
+            if gap.length_squared() >= r2 {
+                continue;
+            }
+            let same_yarn = match self.relation(i, j) {
+                Relation::Neighbour => continue,
+                Relation::OtherYarn => false,
+                Relation::SameYarn => true,
+            };
+            let (s, t) = closest_parameters(a, b, p, q);
+            let w = (a - p) + (b - a) * s - (q - p) * t;
+            let d2 = w.length_squared();
+            if d2 >= r2 {
+                continue;
+            }
+            if same_yarn
+                && !(critical(w, s, b - a, self.turns[i]) && critical(-w, t, q - p, self.turns[j]))
+            {
+                continue;
+            }
+            found(j, s, t, d2.sqrt());
         }
     }
 

@@ -4,8 +4,8 @@
 
 use glam::{DVec3, Vec3};
 use knitwear::metrics::{
-    clearance, closest_parameters, segment_clearances, segment_distance_squared, Clearance,
-    YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
+    clearance, close_pairs, closest_parameters, segment_clearances, segment_distance_squared,
+    Clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
 };
 
 const CAP: f32 = 4.0;
@@ -556,6 +556,44 @@ fn agrees_with_brute_force() {
             slow.len()
         );
     }
+}
+
+/// `close_pairs` lists exactly the pairs `clearance` compares: each segment's nearest listed
+/// partner is its clearance wherever that is under the radius, and it has none otherwise.
+#[test]
+fn close_pairs_are_the_pairs_clearance_measures() {
+    for (seed, closed, within) in [(11, false, 1.5), (12, true, 2.5), (13, false, 0.8)] {
+        let walks = random_walks(6, 80, 0.3, seed);
+        let yarns: Vec<YarnPolyline> = walks
+            .iter()
+            .map(|p| YarnPolyline { points: p, closed })
+            .collect();
+        let per = segment_clearances(&yarns, 1.0, 2.0, within).unwrap();
+        let pairs = close_pairs(&yarns, 1.0, 2.0, within).unwrap();
+        let mut nearest = vec![within; per.len()];
+        for p in &pairs {
+            assert!(p.a < p.b && p.distance < within, "{p:?}");
+            assert!(
+                (0.0..=1.0).contains(&p.s) && (0.0..=1.0).contains(&p.t),
+                "{p:?}"
+            );
+            nearest[p.a] = nearest[p.a].min(p.distance);
+            nearest[p.b] = nearest[p.b].min(p.distance);
+        }
+        // The same pairs; a distance found from the other segment's side may round apart in
+        // the last bit.
+        for (k, (got, want)) in nearest.iter().zip(&per).enumerate() {
+            assert!(
+                (got - want).abs() <= 1e-5 * want.max(1.0),
+                "seed {seed}, segment {k}: nearest listed {got}, clearance {want}"
+            );
+        }
+        assert!(
+            !pairs.is_empty() && per.contains(&within),
+            "seed {seed}: the radius should split the segments"
+        );
+    }
+    assert!(close_pairs(&[], 1.0, 2.0, f32::NAN).is_none());
 }
 
 /// `courses` wavy courses of `per_course` segments, about one diameter apart, weaving in z

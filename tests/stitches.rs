@@ -160,25 +160,21 @@ fn measured(surface: &dyn Surface, pattern: &StitchPattern) -> (f32, CrossingOrd
     )
 }
 
-/// Presets that do not reach the 0.95-diameter clearance target yet, with the floor they hold
-/// (the smallest clearance measured over the three surfaces, less 0.02): a regression bound,
-/// not the goal. Loops leaning across two or three columns within one row lie nearly flat,
-/// and a fixed lattice gives them no room to stand apart (see the README).
+/// Presets that do not reach the 0.95-diameter clearance target everywhere yet, with the
+/// floor they hold (the smallest clearance measured over the three surfaces, less 0.02): a
+/// regression bound, not the goal. Contact relief (`skeleton/contact.rs`) clears them on the
+/// flat sheet (C6 0.949), whose rows are 6.25 diameters tall; the cylinder's are 3.2 (and
+/// the sphere band's vary with latitude), and there loops leaning two or three columns within
+/// one row have no room to stand apart on a fixed lattice (see the README).
 const SHORT_OF_TARGET: &[(&str, f32)] = &[
-    ("twisted_rib", 0.74),
-    ("cable_c4", 0.28),
-    ("cable_c6", 0.07),
-    ("horseshoe_cable", 0.26),
-    ("honeycomb_cable", 0.29),
-    ("mock_cable_rib", 0.55),
-    ("twisted_cable_rib", 0.55),
-    ("diamond", 0.81),
-    ("chevron", 0.81),
-    ("feather_and_fan", 0.29),
-    ("eyelet_rows", 0.63),
-    ("lace_diamond", 0.55),
-    ("bobbles", 0.51),
-    ("linen_stitch", 0.93),
+    ("cable_c4", 0.74),
+    ("cable_c6", 0.26),
+    ("horseshoe_cable", 0.48),
+    ("honeycomb_cable", 0.59),
+    ("mock_cable_rib", 0.91),
+    ("twisted_cable_rib", 0.91),
+    ("feather_and_fan", 0.73),
+    ("eyelet_rows", 0.77),
 ];
 
 /// Clearance (min, in diameters) of every preset on a flat sheet, a cylinder and a sphere at
@@ -199,7 +195,7 @@ fn every_preset_crosses_as_its_pattern_says() {
         let (round, order_round) = measured(&cyl, &pattern);
         let (ball, _) = measured(&sphere, &pattern);
         println!(
-            "{name:20} clearance flat {flat:.2} cylinder {round:.2} sphere {ball:.2}; crossings \
+            "{name:20} clearance flat {flat:.3} cylinder {round:.3} sphere {ball:.3}; crossings \
              {}/{} and {}/{}",
             order_flat.agree, order_flat.decided, order_round.agree, order_round.decided
         );

@@ -9,6 +9,7 @@
 //! flat surface it is the paper's 3D spline exactly (cardinal splines are affine-invariant).
 
 pub mod bobbles;
+pub mod contact;
 pub mod curvature;
 pub mod floats;
 mod key_points;

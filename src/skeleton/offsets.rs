@@ -17,13 +17,16 @@
 //!
 //! With every magnitude at most one yarn diameter the fabric is at most three diameters thick.
 
+use std::sync::Arc;
+
+use super::contact::ContactRelief;
 use crate::pattern::Stitch;
 
 /// Signed normal-offset coefficients of the six key points, in scene units, each in
 /// `[-diameter, diameter]`. `lambda_i = x[i] * sign_i`, where `sign_i` is the crossing side of
 /// key point `i` given by the model above (so for knit-only fabric `x` is the lambdas
 /// themselves, and a purl stitch mirrors them).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct NormalOffsets {
     /// k0..k5, then the sinker's extra offset where the stitch to its left is of the other
     /// kind (a knit/purl boundary, where the yarn changes sides).
@@ -34,6 +37,9 @@ pub struct NormalOffsets {
     pub diameter: f32,
     /// The shapes of the stitches beyond knit and purl, in diameters (see [`Shape`]).
     pub shape: [f32; SHAPE_COEFFICIENTS],
+    /// Per-stitch corrections where yarns would touch ([`super::contact`]), in diameters;
+    /// `None`: none needed.
+    pub relief: Option<Arc<ContactRelief>>,
 }
 
 /// The coefficients of [`NormalOffsets::shape`], each in yarn diameters.
@@ -74,14 +80,25 @@ impl NormalOffsets {
             x: [x; COEFFICIENTS],
             diameter: 1.0,
             shape: DEFAULT_SHAPE,
+            relief: None,
         }
     }
 
+    /// These offsets with contact relief.
+    pub fn with_relief(self, relief: ContactRelief) -> Self {
+        Self {
+            relief: Some(Arc::new(relief)),
+            ..self
+        }
+    }
+
+    /// Rescaled from diameters to scene units (`k`: the yarn diameter).
     pub fn scaled(self, k: f32) -> Self {
         Self {
             x: self.x.map(|v| v * k),
             diameter: self.diameter * k,
             shape: self.shape,
+            relief: self.relief,
         }
     }
 

@@ -188,6 +188,11 @@ pub fn stitch_key_points(
         lambdas[2] += top;
         lambdas[4] -= top;
     }
+    if let Some(relief) = &offsets.relief {
+        for (l, r) in lambdas.iter_mut().zip(relief.at(course, w)) {
+            *l += r * offsets.diameter;
+        }
+    }
     lattice.keep_on_fabric(&mut kp);
     std::array::from_fn(|i| Vec3::new(kp[i].x, kp[i].y, lambdas[i]))
 }

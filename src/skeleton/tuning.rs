@@ -14,7 +14,7 @@ use glam::Vec3;
 
 use super::offsets::COEFFICIENTS;
 use super::offsets::{Shape, DEFAULT_SHAPE, SHAPE_COEFFICIENTS};
-use super::{sample_piece, yarn_pieces, NormalOffsets, SplineSampling};
+use super::{contact, sample_piece, yarn_pieces, NormalOffsets, SplineSampling};
 use crate::lattice::Lattice;
 use crate::metrics::{
     clearance, crossing_order, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
@@ -43,7 +43,7 @@ struct Key {
 }
 
 /// The result of tuning: offsets in diameters, and the clearance they reach on a flat patch.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Tuned {
     /// Offset magnitudes as fractions of the yarn diameter.
     pub offsets: NormalOffsets,
@@ -72,7 +72,7 @@ pub fn tuned_offsets(
         height: (stitch_height / diameter / Q_RATIO).round() as i64,
         tension: (tension / Q_TENSION).round() as i64,
     };
-    let cached = cache().lock().ok().and_then(|c| c.get(&key).copied());
+    let cached = cache().lock().ok().and_then(|c| c.get(&key).cloned());
     let tuned = match cached {
         Some(t) => t,
         None => {
@@ -83,7 +83,7 @@ pub fn tuned_offsets(
                 key.tension as f32 * Q_TENSION,
             );
             if let Ok(mut c) = cache().lock() {
-                c.insert(key, t);
+                c.insert(key, t.clone());
             }
             t
         }
@@ -172,6 +172,7 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
             x: *x,
             diameter: 1.0,
             shape: DEFAULT_SHAPE,
+            relief: None,
         };
         let (min, p01) = patch_clearance(pattern, width, height, tension, &offsets);
         (min + 0.1 * p01, min)
@@ -212,15 +213,26 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
         x,
         diameter: 1.0,
         shape: DEFAULT_SHAPE,
+        relief: None,
     };
     let free = shape_coefficients_used(pattern);
-    if free.is_empty() || !TUNE_SHAPE {
-        return Tuned {
+    let tuned = if free.is_empty() || !TUNE_SHAPE {
+        Tuned {
             offsets,
             clearance_min,
-        };
+        }
+    } else {
+        tune_shape(pattern, width, height, tension, offsets, &free)
+    };
+    // Where one coefficient per kind of key point cannot keep the yarns apart, local
+    // corrections do.
+    match contact::relieve(pattern, width, height, tension, &tuned.offsets) {
+        (Some(relief), reached) if reached > tuned.clearance_min => Tuned {
+            offsets: tuned.offsets.with_relief(relief),
+            clearance_min: reached,
+        },
+        _ => tuned,
     }
-    tune_shape(pattern, width, height, tension, offsets, &free)
 }
 
 /// The [`Shape`] coefficients that change the fabric of `pattern`.
@@ -285,7 +297,7 @@ fn tune_shape(
         let mut improved = false;
         for &i in free {
             for dir in [1.0f32, -1.0] {
-                let mut y = offsets;
+                let mut y = offsets.clone();
                 let (lo, hi) = SHAPE_BOUNDS[i];
                 y.shape[i] = (y.shape[i] + dir * step).clamp(lo, hi);
                 if y.shape[i] == offsets.shape[i] {
