@@ -36,6 +36,23 @@ pub fn stitch_counts(
     Ok((courses, wales))
 }
 
+/// The whole number of pattern repeats nearest `count` stitches, as a knitter casts on for
+/// knitting in the round: a `repeat`-stitch pattern closes on itself only over a multiple of
+/// `repeat` (otherwise the seam cuts a cable or a lace motif in two, and loops crossing it
+/// land on stitches of another motif). Counts under half a repeat stay as they are: the
+/// pattern cannot go round once, and rounding up would change the gauge out of all measure.
+pub fn whole_repeats(count: usize, repeat: usize) -> usize {
+    if repeat <= 1 {
+        return count;
+    }
+    let repeats = (count + repeat / 2) / repeat;
+    if repeats == 0 {
+        count
+    } else {
+        repeats.saturating_mul(repeat)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -57,5 +74,22 @@ mod tests {
         );
         let err = stitch_counts((1e6, 1.0), (20.0, 28.0), None, None).unwrap_err();
         assert!(matches!(err, KnitError::Budget(m) if m.contains("stitches per course")));
+    }
+
+    #[test]
+    fn in_the_round_counts_are_whole_repeats() {
+        assert_eq!(whole_repeats(38, 1), 38);
+        assert_eq!(whole_repeats(38, 12), 36);
+        assert_eq!(whole_repeats(42, 12), 48);
+        assert_eq!(whole_repeats(6, 12), 12);
+        assert_eq!(whole_repeats(5, 12), 5);
+        assert_eq!(whole_repeats(0, 4), 0);
+        for n in 1..200 {
+            for r in 1..30 {
+                let m = whole_repeats(n, r);
+                assert!(m % r == 0 || (m == n && 2 * n < r), "{n} {r} -> {m}");
+                assert!(2 * m.abs_diff(n) <= r, "{n} {r} -> {m}");
+            }
+        }
     }
 }

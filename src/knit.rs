@@ -280,10 +280,40 @@ fn validate(p: &KnitParams) -> Result<()> {
     Ok(())
 }
 
-/// Stitch counts from explicit counts or the gauge and the surface's extent.
-fn stitch_counts(surface: &dyn Surface, p: &KnitParams) -> Result<(usize, usize)> {
+/// Stitch counts from explicit counts or the gauge and the surface's extent. Along a cyclic
+/// direction a count from the gauge is rounded to whole repeats of the pattern (and of the
+/// colour chart, where a whole number of both fits), as a knitter casts on in the round;
+/// counts given explicitly are kept as given.
+fn stitch_counts(
+    surface: &dyn Surface,
+    pattern: &StitchPattern,
+    p: &KnitParams,
+) -> Result<(usize, usize)> {
     let gauge = p.gauge.unwrap_or(DEFAULT_GAUGE);
-    crate::gauge::stitch_counts(surface.extent(), gauge, p.courses, p.wales)
+    let (courses, wales) =
+        crate::gauge::stitch_counts(surface.extent(), gauge, p.courses, p.wales)?;
+    let colors = p.colors.as_ref().filter(|_| p.color_image.is_none());
+    let repeat = |stitch: usize, color: Option<usize>, count: usize| {
+        let both = color.map_or(stitch, |c| crate::pattern::lcm(stitch, c));
+        if both <= count {
+            both
+        } else {
+            stitch
+        }
+    };
+    let wales = if surface.cyclic_u() && p.wales.is_none() {
+        let r = repeat(pattern.width(), colors.map(ColorPattern::width), wales);
+        crate::gauge::whole_repeats(wales, r)
+    } else {
+        wales
+    };
+    let courses = if surface.cyclic_v() && p.courses.is_none() {
+        let r = repeat(pattern.height(), colors.map(ColorPattern::height), courses);
+        crate::gauge::whole_repeats(courses, r)
+    } else {
+        courses
+    };
+    Ok((courses, wales))
 }
 
 /// Knits `pattern` over `surface`: [`PreparedKnit::new`] then [`PreparedKnit::build`].
@@ -348,7 +378,7 @@ impl PreparedKnit {
                  and v)"
             )));
         }
-        let (courses, wales) = stitch_counts(surface, p)?;
+        let (courses, wales) = stitch_counts(surface, pattern, p)?;
         let m = p.ring_segments;
         let s = p.samples_per_loop;
         let stitches = courses as u64 * wales as u64;

@@ -268,3 +268,33 @@ fn fair_isle_floats_run_behind_the_fabric_in_their_own_colour() {
         .count();
     assert!(behind > 0, "no yarn runs behind the fabric");
 }
+
+/// Knitted in the round from the gauge, a pattern goes round a whole number of times (as a
+/// knitter casts on a multiple of the repeat), so the seam cuts no cable; counts given
+/// explicitly are kept as given.
+#[test]
+fn in_the_round_the_gauge_gives_whole_repeats() {
+    let cyl = cylinder(); // 18.85 cm round: 37.7 stitches at 20 per 10 cm
+    for (name, wales) in [("stockinette", 38), ("cable_c6", 40), ("cable_c4", 36)] {
+        let pattern = StitchPattern::preset(name).unwrap();
+        let knit = PreparedKnit::new(&cyl, &pattern, &KnitParams::default()).unwrap();
+        assert_eq!(knit.stats().wales, wales, "{name}");
+        assert_eq!(knit.stats().wales % pattern.width(), 0, "{name}");
+    }
+    let c6 = StitchPattern::preset("cable_c6").unwrap();
+    let given = KnitParams {
+        wales: Some(38),
+        ..KnitParams::default()
+    };
+    assert_eq!(
+        PreparedKnit::new(&cyl, &c6, &given).unwrap().stats().wales,
+        38
+    );
+    // Flat, the count is the gauge's: the edges need no whole repeats.
+    let plane = PlaneSurface {
+        width: 0.19,
+        height: 0.08,
+    };
+    let flat = PreparedKnit::new(&plane, &c6, &KnitParams::default()).unwrap();
+    assert_eq!(flat.stats().wales, 38);
+}

@@ -118,4 +118,14 @@ impl ColorPattern {
     pub fn palette(&self) -> &[[f32; 3]] {
         &self.palette
     }
+
+    /// Stitches in one repeat of the chart across a row.
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Rows in one repeat of the chart.
+    pub fn height(&self) -> usize {
+        self.height
+    }
 }

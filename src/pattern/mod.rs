@@ -16,6 +16,7 @@ mod stitch;
 pub use chart::parse_chart;
 pub use color::ColorPattern;
 pub use instruction::Instruction;
+pub(crate) use knitspeak::lcm;
 pub use knitspeak::{looks_like_knitspeak, parse_knitspeak};
 pub use presets::{color_preset, COLOR_PRESETS, FAIR_ISLE_BAND, PRESETS};
 pub use rows::WrittenRow;
