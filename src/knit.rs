@@ -101,7 +101,8 @@ pub struct KnitParams {
     /// Stitches and rows per 10 cm (0.1 scene units), measured on the surface. Used for the
     /// counts not given. Default: [`DEFAULT_GAUGE`].
     pub gauge: Option<(f32, f32)>,
-    /// Yarn radius. Default: [`DEFAULT_RADIUS_PER_STITCH_WIDTH`] of the stitch width.
+    /// Yarn radius. Default: [`DEFAULT_RADIUS_PER_STITCH_WIDTH`] of the stitch width (the
+    /// gauge's width where a count in the round was rounded to whole pattern repeats).
     pub yarn_radius: Option<f32>,
     /// Stitch width and height (scene units) that the normal offsets are tuned for and the
     /// default yarn radius follows. Default: measured on the surface. An animated knit pins
@@ -283,12 +284,14 @@ fn validate(p: &KnitParams) -> Result<()> {
 /// Stitch counts from explicit counts or the gauge and the surface's extent. Along a cyclic
 /// direction a count from the gauge is rounded to whole repeats of the pattern (and of the
 /// colour chart, where a whole number of both fits), as a knitter casts on in the round;
-/// counts given explicitly are kept as given.
+/// counts given explicitly are kept as given. Also returns how much wider a stitch is for the
+/// rounding (the gauge's count over the rounded one), which the default yarn does not follow:
+/// the gauge fixes the yarn, and rounding only stretches or gathers the stitches round.
 fn stitch_counts(
     surface: &dyn Surface,
     pattern: &StitchPattern,
     p: &KnitParams,
-) -> Result<(usize, usize)> {
+) -> Result<(usize, usize, f32)> {
     let gauge = p.gauge.unwrap_or(DEFAULT_GAUGE);
     let (courses, wales) =
         crate::gauge::stitch_counts(surface.extent(), gauge, p.courses, p.wales)?;
@@ -301,7 +304,8 @@ fn stitch_counts(
             stitch
         }
     };
-    let wales = if surface.cyclic_u() && p.wales.is_none() {
+    let gauge_wales = wales;
+    let rounded = if surface.cyclic_u() && p.wales.is_none() {
         let r = repeat(pattern.width(), colors.map(ColorPattern::width), wales);
         crate::gauge::whole_repeats(wales, r)
     } else {
@@ -313,7 +317,7 @@ fn stitch_counts(
     } else {
         courses
     };
-    Ok((courses, wales))
+    Ok((courses, rounded, gauge_wales as f32 / rounded.max(1) as f32))
 }
 
 /// Knits `pattern` over `surface`: [`PreparedKnit::new`] then [`PreparedKnit::build`].
@@ -378,12 +382,12 @@ impl PreparedKnit {
                  and v)"
             )));
         }
-        let (courses, wales) = stitch_counts(surface, pattern, p)?;
+        let (courses, wales, widened) = stitch_counts(surface, pattern, p)?;
         let m = p.ring_segments;
         let s = p.samples_per_loop;
         let stitches = courses as u64 * wales as u64;
         budget::check(
-            &OutputSize::upper_bound(stitches, s as u64, m as u64),
+            &OutputSize::upper_bound(stitches, (s * densest(pattern)) as u64, m as u64),
             p.budget_bytes,
             stitches,
         )?;
@@ -402,7 +406,7 @@ impl PreparedKnit {
         };
         let radius = p
             .yarn_radius
-            .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * stitch_width);
+            .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * stitch_width / widened);
         if 2.0 * radius > stitch_width.min(2.0 * stitch_height) {
             return Err(KnitError::Parameter(format!(
                 "the yarn ({:.4} thick) is thicker than a stitch ({stitch_width:.4} x \
@@ -420,8 +424,13 @@ impl PreparedKnit {
 
         let domain = surface.domain();
         let cyclic = (surface.cyclic_u(), cyclic_v);
-        let lattice =
-            Lattice::perturbed(domain, courses, wales, cyclic.0, cyclic.1, p.kappa, p.seed)?;
+        let (width_d, height_d) = tuning::proportions(stitch_width, stitch_height, 2.0 * radius);
+        let lattice = crate::skeleton::leaning_rows::shaped(
+            Lattice::perturbed(domain, courses, wales, cyclic.0, cyclic.1, p.kappa, p.seed)?,
+            pattern,
+            width_d,
+            height_d,
+        );
         let sampling = SplineSampling {
             samples_per_loop: s,
             tension: p.tension,
@@ -438,7 +447,13 @@ impl PreparedKnit {
             let built = built_stitches(surface, &lattice);
             let count = built.iter().filter(|b| **b).count();
             (
-                with_extras(yarn_pieces(&lattice, &built), &lattice, &built, pattern, p),
+                with_extras(
+                    course_pieces(&lattice, &built, pattern),
+                    &lattice,
+                    &built,
+                    pattern,
+                    p,
+                ),
                 built,
                 count,
             )
@@ -467,7 +482,13 @@ impl PreparedKnit {
                 let reach = radius * (3.0 + p.fluffiness);
                 let levels = stitch_levels(surface, &lattice, &built, d, reach)?;
                 let kept: Vec<bool> = levels.iter().map(|l| l.is_built()).collect();
-                let pieces = with_extras(yarn_pieces(&lattice, &kept), &lattice, &kept, pattern, p);
+                let pieces = with_extras(
+                    course_pieces(&lattice, &kept, pattern),
+                    &lattice,
+                    &kept,
+                    pattern,
+                    p,
+                );
                 let spl = |level: Level| d.level_settings(level, full).samples_per_loop;
                 let spans: Vec<Span> = pieces
                     .par_iter()
@@ -981,6 +1002,24 @@ pub fn measure(out: &KnitOutput) -> (f32, f32) {
         3.0,
     );
     (c.min, c.p01)
+}
+
+/// The most samples-per-loop multiple any piece of `pattern` can get.
+fn densest(pattern: &StitchPattern) -> usize {
+    let lean = (0..pattern.height())
+        .flat_map(|r| (0..pattern.width()).map(move |w| (r, w)))
+        .map(|(r, w)| pattern.stitch(r, w).land_offset.unsigned_abs() as usize)
+        .max()
+        .unwrap_or(0);
+    crate::skeleton::sampling_density::density(lean)
+}
+
+/// The pieces of yarn of every course over the stitches `built`, each sampled as densely as
+/// its loops need ([`crate::skeleton::sampling_density`]).
+fn course_pieces(lattice: &Lattice, built: &[bool], pattern: &StitchPattern) -> Vec<YarnPiece> {
+    let mut pieces = yarn_pieces(lattice, built);
+    crate::skeleton::sampling_density(&mut pieces, lattice, pattern);
+    pieces
 }
 
 /// `pieces` and the extra pieces of yarn the pattern asks for: the balls of its bobbles

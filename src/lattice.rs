@@ -12,6 +12,7 @@
 //! 2.4 ([`perturbation`]): tiles become general convex quadrilaterals that never fold.
 
 pub mod perturbation;
+pub mod row_heights;
 
 use glam::{DVec2, Vec2};
 use rayon::prelude::*;
@@ -20,6 +21,7 @@ use crate::error::Result;
 use crate::surface::UvRect;
 
 pub use perturbation::{Perturbation, KAPPA_MAX};
+pub use row_heights::RowHeights;
 
 /// How far, in rows, the sinker dips below a tile (k0) and the head reaches above it (k3).
 /// The lattice is inset by this much on a non-cyclic v so every key point lies on the surface.
@@ -39,6 +41,9 @@ pub struct Lattice {
     nodes: Vec<Vec2>,
     /// Whether the nodes were moved off the regular grid (then tile centres are corner means).
     perturbed: bool,
+    /// Whether the lattice is a window onto a larger fabric (a patch that offsets are tuned
+    /// on) rather than a whole piece: see [`Lattice::window`].
+    pub window: bool,
 }
 
 /// The four corners of a tile and the northern neighbour of its top-left corner, named as in
@@ -97,6 +102,7 @@ impl Lattice {
             origin,
             nodes,
             perturbed: false,
+            window: false,
         }
     }
 
@@ -159,6 +165,34 @@ impl Lattice {
             });
         lattice.perturbed = true;
         Ok(lattice)
+    }
+
+    /// The lattice with its rows made taller or shorter column by column, as `heights`
+    /// says ([`RowHeights`]): every node moves along v by its displacement times the tile
+    /// height. Nodes whose displacement is zero keep their bits (the first node row, the
+    /// last one of a non-cyclic v, columns whose rows are all regular), so the outline of
+    /// the fabric stays the domain's. Tiles keep their node order as long as every height is
+    /// more than the perturbation can take away (heights of at least 0.5 against at most
+    /// `12 kappa` = 0.24 rows at [`KAPPA_MAX`]).
+    pub fn with_row_heights(mut self, heights: &RowHeights) -> Self {
+        let d = heights.node_displacements(self.courses, self.wales, self.cyclic_v);
+        let tile_v = self.tile.y;
+        for (node, d) in self.nodes.iter_mut().zip(&d) {
+            if *d != 0.0 {
+                node.y += d * tile_v;
+                self.perturbed = true;
+            }
+        }
+        self
+    }
+
+    /// The lattice as a window onto a larger fabric: its sides are not the fabric's edges,
+    /// so a crossing the window holds only part of still crosses (the loops landing off it
+    /// stay straight), where a piece of fabric knits it straight whole
+    /// ([`crate::skeleton::stitch_shape::landing`]).
+    pub fn window(mut self) -> Self {
+        self.window = true;
+        self
     }
 
     /// Node `(r, c)`, `r <= courses + 1`, `c <= wales`.

@@ -230,9 +230,8 @@ fn expected(lattice: &Lattice, pattern: &StitchPattern, a: &Seg, b: &Seg) -> Opt
     }
     let wales = lattice.wales;
     let cell = |s: &Seg| pattern.stitch(s.course, s.wale);
-    let dest = |s: &Seg| {
-        landing(lattice, pattern.width(), cell(s), s.wale).rem_euclid(wales as isize) as usize
-    };
+    let dest =
+        |s: &Seg| landing(lattice, pattern, s.course, s.wale).rem_euclid(wales as isize) as usize;
     let is_leg = |s: &Seg| matches!(s.part, Part::LeftLeg | Part::RightLeg);
     let (ca, cb) = (cell(a), cell(b));
     let float = |c: crate::pattern::Stitch| match c.form {

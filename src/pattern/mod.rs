@@ -125,6 +125,47 @@ impl StitchPattern {
         self.height
     }
 
+    /// The columns, relative to `wale`, of the smallest run of stitches of its row that the
+    /// loop of stitch (course, wale) crosses or is gathered with: `(lo, hi)` with
+    /// `lo <= 0 <= hi`, such that every loop of columns `wale + lo ..= wale + hi` lands in
+    /// that run and every loop landing in it comes from it (a cable's crossing, a decrease's
+    /// loops). `(0, 0)` for a loop that neither leans nor is gathered. A piece of fabric that holds only part
+    /// of a run cannot cross it (its loops would land on stitches that are not there, or on
+    /// one another), so it knits the whole run straight.
+    pub fn landing_group(&self, course: usize, wale: usize) -> (isize, isize) {
+        let w = self.width as isize;
+        let row = (course % self.height) * self.width;
+        let lean = |x: isize| isize::from(self.cells[row + x.rem_euclid(w) as usize].land_offset);
+        let own = self.cells[row + wale % self.width];
+        if own.land_offset == 0 && own.land_layer == 0 {
+            return (0, 0);
+        }
+        let reach = (0..self.width)
+            .map(|x| self.cells[row + x].land_offset.unsigned_abs() as isize)
+            .max()
+            .unwrap_or(0);
+        let x0 = wale as isize;
+        let d0 = x0 + lean(x0);
+        let (mut lo, mut hi) = (x0.min(d0), x0.max(d0));
+        // Each pass widens the run to close it; it is closed within a few repeats, or the row
+        // leans without end (then the loop is only held to its own landing column).
+        for _ in 0..4 * self.width + 4 {
+            let mut changed = false;
+            for x in lo - reach..=hi + reach {
+                let d = x + lean(x);
+                if (lo..=hi).contains(&x) != (lo..=hi).contains(&d) {
+                    lo = lo.min(x).min(d);
+                    hi = hi.max(x).max(d);
+                    changed = true;
+                }
+            }
+            if !changed {
+                return (lo - x0, hi - x0);
+            }
+        }
+        (d0.min(x0) - x0, d0.max(x0) - x0)
+    }
+
     /// The stitch at (course, wale) of the fabric, the chart repeated in both directions.
     pub fn stitch(&self, course: usize, wale: usize) -> Stitch {
         self.cells[(course % self.height) * self.width + wale % self.width]

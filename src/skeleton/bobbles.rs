@@ -40,6 +40,7 @@ pub fn bobble_pieces(lattice: &Lattice, built: &[bool], pattern: &StitchPattern)
                     float_color: None,
                     float_layer: 0,
                     bobble: true,
+                    density: 1,
                 });
             }
         }

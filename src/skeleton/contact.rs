@@ -93,7 +93,12 @@ impl Patch {
             width: wales as f32 * width,
             height: (courses as f32 + 2.0 * crate::lattice::ROW_OVERHANG) * height,
         };
-        let lattice = Lattice::regular(plane.domain(), courses, wales, false, false);
+        let lattice = super::leaning_rows::shaped(
+            Lattice::regular(plane.domain(), courses, wales, false, false).window(),
+            pattern,
+            width,
+            height,
+        );
         let pieces = yarn_pieces(&lattice, &vec![true; courses * wales]);
         Patch {
             plane,

@@ -59,6 +59,7 @@ pub fn float_pieces(lattice: &Lattice, built: &[bool], colors: &ColorPattern) ->
                             float_color: Some(c),
                             float_layer: rank as u8,
                             bobble: false,
+                            density: 1,
                         });
                     }
                 }

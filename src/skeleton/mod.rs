@@ -13,7 +13,9 @@ pub mod contact;
 pub mod curvature;
 pub mod floats;
 mod key_points;
+pub mod leaning_rows;
 mod offsets;
+pub mod sampling_density;
 mod spline;
 pub mod stitch_shape;
 pub mod tuning;
@@ -29,6 +31,8 @@ use rayon::prelude::*;
 use crate::lattice::Lattice;
 use crate::pattern::StitchPattern;
 use crate::surface::Surface;
+
+pub use sampling_density::sampling_density;
 
 /// A continuous run of built stitches of one course: one piece of yarn. A course is one
 /// piece unless stitches are missing (outside every UV island); a complete course round a
@@ -48,6 +52,9 @@ pub struct YarnPiece {
     pub float_layer: u8,
     /// The ball of a bobble worked into stitch (course, first_wale) (see [`bobbles`]).
     pub bobble: bool,
+    /// Centreline samples per loop as a multiple of the knit's samples per loop, at least 1:
+    /// more on courses whose loops lean across columns ([`sampling_density`]).
+    pub density: usize,
 }
 
 /// Spline sampling settings.
@@ -63,7 +70,7 @@ impl YarnPiece {
     /// Number of centreline samples of this piece, closed form. Open pieces sample the
     /// parameter range `[0, 6n - 1]` (the last key point included); closed ones `[0, 6n)`.
     pub fn sample_count(&self, samples_per_loop: usize) -> usize {
-        let s = samples_per_loop;
+        let s = samples_per_loop * self.density.max(1);
         if self.closed {
             self.stitches * s
         } else {
@@ -75,7 +82,7 @@ impl YarnPiece {
 
     /// Parameter of sample `j` on the spline through this piece's key points.
     pub fn sample_t(&self, j: usize, samples_per_loop: usize) -> f32 {
-        let t = (j * KEY_POINTS) as f32 / samples_per_loop as f32;
+        let t = (j * KEY_POINTS) as f32 / (samples_per_loop * self.density.max(1)) as f32;
         if self.closed {
             t
         } else {
@@ -116,6 +123,7 @@ pub fn yarn_pieces(lattice: &Lattice, built: &[bool]) -> Vec<YarnPiece> {
                 float_color: None,
                 float_layer: 0,
                 bobble: false,
+                density: 1,
             });
             continue;
         }
@@ -140,6 +148,7 @@ pub fn yarn_pieces(lattice: &Lattice, built: &[bool]) -> Vec<YarnPiece> {
                         float_color: None,
                         float_layer: 0,
                         bobble: false,
+                        density: 1,
                     });
                     run_start = None;
                 }

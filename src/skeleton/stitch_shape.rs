@@ -31,26 +31,53 @@ pub const YARN_OVER_LEG_BOTTOM: f32 = 0.45;
 /// The same for a made stitch (m1), whose legs reach further down: a small, closed gap.
 pub const MAKE_ONE_LEG_BOTTOM: f32 = 0.2;
 
-/// The stitch at (course, wale) of the fabric and the wale its loop lands in, clamped to the
-/// fabric on an open-u surface (a loop leaning off the edge stays straight).
+/// The wale the loop of stitch (course, wale) lands in: where the pattern says, if the whole
+/// run of loops it crosses or is gathered with ([`StitchPattern::landing_group`]) is on the
+/// fabric; otherwise its own (the loop stays straight).
 ///
-/// Round a cyclic-u surface whose wales are not a whole number of pattern repeats, the last,
-/// partial repeat meets the first at the seam with its columns out of step: loops there stay
-/// straight too, rather than land on a stitch that is not pulled through them.
-pub fn landing(lattice: &Lattice, pattern_width: usize, stitch: Stitch, wale: usize) -> isize {
-    let wales = lattice.wales as isize;
-    let dest = wale as isize + isize::from(stitch.land_offset);
-    let whole = wales - wales % pattern_width as isize;
-    let fits = if lattice.cyclic_u {
-        whole == wales || ((wale as isize) < whole && (0..whole).contains(&dest))
+/// On an open-u surface a run cut by the edge stays straight, all of it: leaning only the
+/// loops whose landing is on the fabric would land two loops on one stitch. Round a cyclic-u
+/// surface whose wales are not a whole number of pattern repeats, the last, partial repeat
+/// meets the first at the seam with its columns out of step: runs there stay straight too.
+pub fn landing(lattice: &Lattice, pattern: &StitchPattern, course: usize, wale: usize) -> isize {
+    let here = wale as isize;
+    let dest = here + isize::from(pattern.stitch(course, wale).land_offset);
+    let fits = if lattice.window {
+        lattice.cyclic_u || (0..lattice.wales as isize).contains(&dest)
     } else {
-        (0..wales).contains(&dest)
+        group_on_fabric(lattice, pattern, course, wale)
     };
     if fits {
         dest
     } else {
-        wale as isize
+        here
     }
+}
+
+/// Whether the whole run of loops that the loop of stitch (course, wale) crosses or is
+/// gathered with is on the fabric (see [`landing`]). True for a loop that is in no run, and
+/// on a [`Lattice::window`].
+pub fn group_on_fabric(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    course: usize,
+    wale: usize,
+) -> bool {
+    if lattice.window {
+        return true;
+    }
+    let (lo, hi) = pattern.landing_group(course, wale);
+    if (lo, hi) == (0, 0) {
+        return true;
+    }
+    let wales = lattice.wales as isize;
+    let whole = wales - wales % pattern.width() as isize;
+    if lattice.cyclic_u && whole == wales {
+        return true;
+    }
+    let end = if lattice.cyclic_u { whole } else { wales };
+    let here = wale as isize;
+    here + lo >= 0 && here + hi < end
 }
 
 /// The tile of stitch (course, wale) for a wale that may lie past either end of a cyclic-u
@@ -82,7 +109,14 @@ pub fn stitch_key_points(
 ) -> [Vec3; KEY_POINTS] {
     let wales = lattice.wales;
     let w = wale % wales;
-    let this = pattern.stitch(course, w);
+    let mut this = pattern.stitch(course, w);
+    // A crossing or a decrease the fabric holds only part of is knitted straight: its loops
+    // pass no other loop and take no corrections made for the whole of it.
+    let whole_group = group_on_fabric(lattice, pattern, course, w);
+    if !whole_group {
+        this.land_offset = 0;
+        this.land_layer = 0;
+    }
     let left: Stitch = if w > 0 {
         pattern.stitch(course, w - 1)
     } else if lattice.cyclic_u {
@@ -93,7 +127,7 @@ pub fn stitch_key_points(
     // The pattern repeats downwards too, so the first course has a stitch "below".
     let below = pattern.stitch(course + pattern.height() - 1, w);
     let unwrap = (wale - w) as isize;
-    let dest = landing(lattice, pattern.width(), this, w);
+    let dest = landing(lattice, pattern, course, w);
     // A slipped stitch above carries this loop up one more row (where there is one).
     let rise = usize::from(this.rise > 0 && course + 1 < lattice.courses);
     let above = pattern.stitch(course + 1 + rise, dest.rem_euclid(wales as isize) as usize);
@@ -188,7 +222,7 @@ pub fn stitch_key_points(
         lambdas[2] += top;
         lambdas[4] -= top;
     }
-    if let Some(relief) = &offsets.relief {
+    if let (Some(relief), true) = (&offsets.relief, whole_group) {
         for (l, r) in lambdas.iter_mut().zip(relief.at(course, w)) {
             *l += r * offsets.diameter;
         }

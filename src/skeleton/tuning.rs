@@ -27,6 +27,9 @@ use crate::surface::{PlaneSurface, Surface};
 const TUNING_SAMPLES: usize = 24;
 /// Minimum patch size in stitches in each direction.
 const MIN_PATCH: usize = 6;
+/// The clearance every stitch should keep, in diameters (the target): a relieved
+/// optimum that reaches it ends the search.
+const GOAL: f32 = 0.95;
 /// Clearances beyond this many diameters do not matter to the search.
 const CAP: f32 = 3.0;
 
@@ -56,6 +59,13 @@ fn cache() -> &'static Mutex<HashMap<Key, Tuned>> {
     CACHE.get_or_init(|| Mutex::new(HashMap::new()))
 }
 
+/// Stitch width and height in yarn diameters, quantised as the tuning is: the proportions
+/// the offsets (and the rows of leaning loops, [`super::leaning_rows`]) are chosen for.
+pub fn proportions(stitch_width: f32, stitch_height: f32, diameter: f32) -> (f32, f32) {
+    let q = |x: f32| (x / diameter / Q_RATIO).round() as i64 as f32 * Q_RATIO;
+    (q(stitch_width), q(stitch_height))
+}
+
 /// Tunes the normal offsets for `pattern` knitted with stitches `stitch_width x stitch_height`
 /// (scene units, measured on the surface) and yarn of `diameter`. Returns offsets in scene
 /// units and the flat-patch clearance in diameters.
@@ -72,6 +82,10 @@ pub fn tuned_offsets(
         height: (stitch_height / diameter / Q_RATIO).round() as i64,
         tension: (tension / Q_TENSION).round() as i64,
     };
+    debug_assert_eq!(
+        proportions(stitch_width, stitch_height, diameter),
+        (key.width as f32 * Q_RATIO, key.height as f32 * Q_RATIO)
+    );
     let cached = cache().lock().ok().and_then(|c| c.get(&key).cloned());
     let tuned = match cached {
         Some(t) => t,
@@ -119,7 +133,12 @@ fn patch_measure(
         width: wales as f32 * width,
         height: (courses as f32 + 2.0 * crate::lattice::ROW_OVERHANG) * height,
     };
-    let lattice = Lattice::regular(plane.domain(), courses, wales, false, false);
+    let lattice = super::leaning_rows::shaped(
+        Lattice::regular(plane.domain(), courses, wales, false, false).window(),
+        pattern,
+        width,
+        height,
+    );
     let built = vec![true; courses * wales];
     let pieces = yarn_pieces(&lattice, &built);
     let sampling = SplineSampling {
@@ -177,7 +196,8 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
         let (min, p01) = patch_clearance(pattern, width, height, tension, &offsets);
         (min + 0.1 * p01, min)
     };
-    let mut best_overall: Option<(f32, f32, [f32; COEFFICIENTS])> = None;
+    // Every start's optimum, best first.
+    let mut found: Vec<(f32, f32, [f32; COEFFICIENTS])> = Vec::new();
     for start in START_POINTS {
         let mut x = *start;
         let (mut best, mut best_min) = score(&x);
@@ -204,35 +224,69 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
                 step *= 0.5;
             }
         }
-        if best_overall.is_none_or(|(b, _, _)| best > b) {
-            best_overall = Some((best, best_min, x));
-        }
+        found.push((best, best_min, x));
     }
-    let (_, clearance_min, x) = best_overall.unwrap_or((0.0, 0.0, [0.5; COEFFICIENTS]));
-    let offsets = NormalOffsets {
-        x,
-        diameter: 1.0,
-        shape: DEFAULT_SHAPE,
-        relief: None,
-    };
+    // Stable: equal scores keep the order of START_POINTS.
+    found.sort_by(|a, b| b.0.total_cmp(&a.0));
+    // Starts that converge to one optimum relieve alike.
+    found.dedup_by(|a, b| a.2 == b.2);
     let free = shape_coefficients_used(pattern);
-    let tuned = if free.is_empty() || !TUNE_SHAPE {
-        Tuned {
-            offsets,
-            clearance_min,
+    let mut result: Option<Tuned> = None;
+    for (_, clearance_min, x) in found {
+        let offsets = NormalOffsets {
+            x,
+            diameter: 1.0,
+            shape: DEFAULT_SHAPE,
+            relief: None,
+        };
+        let tuned = if free.is_empty() || !TUNE_SHAPE {
+            Tuned {
+                offsets,
+                clearance_min,
+            }
+        } else {
+            tune_shape(pattern, width, height, tension, offsets, &free)
+        };
+        if tuned.clearance_min >= contact::TARGET {
+            // Clear already: no relief, and no other start can do better where it matters.
+            if result
+                .as_ref()
+                .is_none_or(|r| r.clearance_min < contact::TARGET)
+            {
+                result = Some(tuned);
+            }
+            break;
         }
-    } else {
-        tune_shape(pattern, width, height, tension, offsets, &free)
-    };
-    // Where one coefficient per kind of key point cannot keep the yarns apart, local
-    // corrections do.
-    match contact::relieve(pattern, width, height, tension, &tuned.offsets) {
-        (Some(relief), reached) if reached > tuned.clearance_min => Tuned {
-            offsets: tuned.offsets.with_relief(relief),
-            clearance_min: reached,
-        },
-        _ => tuned,
+        // Where one coefficient per kind of key point cannot keep the yarns apart, local
+        // corrections do. The best optimum unrelieved is not always the one that relieves
+        // best: the next is tried while the relief falls short of the goal.
+        let rr = contact::relieve(pattern, width, height, tension, &tuned.offsets);
+        let outcome = match rr {
+            (Some(relief), reached) if reached > tuned.clearance_min => Tuned {
+                offsets: tuned.offsets.with_relief(relief),
+                clearance_min: reached,
+            },
+            _ => tuned,
+        };
+        if result
+            .as_ref()
+            .is_none_or(|r| outcome.clearance_min > r.clearance_min)
+        {
+            result = Some(outcome);
+        }
+        if result.as_ref().is_some_and(|r| r.clearance_min >= GOAL) {
+            break;
+        }
     }
+    result.unwrap_or(Tuned {
+        offsets: NormalOffsets {
+            x: [0.5; COEFFICIENTS],
+            diameter: 1.0,
+            shape: DEFAULT_SHAPE,
+            relief: None,
+        },
+        clearance_min: 0.0,
+    })
 }
 
 /// The [`Shape`] coefficients that change the fabric of `pattern`.

@@ -42,12 +42,16 @@ def test_a_pattern_file_and_a_blender_text(api: ModuleType, tmp_path: Path) -> N
     from_file = api.knit_result(source, **SMALL, pattern="FILE", pattern_file=str(path))
     np.testing.assert_array_equal(from_file.vertices, preset.vertices)
 
+    chart = "pXXXXp\npkkkkp\npkkkkp\npkkkkp\npkkkkp\npkkkkp\n\nX = C4B\n"
     text = bpy.data.texts.new("cable chart")
-    text.write("pXXXXp\npkkkkp\npkkkkp\npkkkkp\npkkkkp\npkkkkp\n\nX = C4B\n")
+    text.write(chart)
     from_text = api.knit_result(
         source, **SMALL, pattern="FILE", pattern_text=text.name, pattern_file="//nothing.ks"
     )
-    assert len(from_text.vertices) == len(preset.vertices)
+    # The Blender text is read as the same chart pasted into the sidebar.
+    pasted = api.knit_result(source, **SMALL, pattern="CUSTOM", pattern_chart=chart)
+    np.testing.assert_array_equal(from_text.vertices, pasted.vertices)
+    assert from_text.stats["stitches"] == preset.stats["stitches"]
 
     assert bpy.ops.object.knitwear_knit(**SMALL, pattern="FILE", pattern_file=str(path)) == {
         "FINISHED"
