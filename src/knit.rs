@@ -101,11 +101,13 @@ pub struct KnitParams {
     /// Stitches and rows per 10 cm (0.1 scene units), measured on the surface. Used for the
     /// counts not given. Default: [`DEFAULT_GAUGE`].
     pub gauge: Option<(f32, f32)>,
-    /// Yarn radius. Default: [`DEFAULT_RADIUS_PER_STITCH_WIDTH`] of the stitch width (the
-    /// gauge's width where a count in the round was rounded to whole pattern repeats).
+    /// Yarn radius. Default: [`DEFAULT_RADIUS_PER_STITCH_WIDTH`] of the mean stitch width
+    /// measured on the surface, or of `stitch_size`'s width where that is given (the gauge's
+    /// width where a count in the round was rounded to whole pattern repeats).
     pub yarn_radius: Option<f32>,
-    /// Stitch width and height (scene units) that the normal offsets are tuned for and the
-    /// default yarn radius follows. Default: measured on the surface. An animated knit pins
+    /// Stitch width and height (scene units) that the normal offsets (and the rows of leaning
+    /// loops) are tuned for. Default: measured on the surface, the tighter stitches' size
+    /// ([`crate::tight_stitches`]: the mean stitch where all are alike). An animated knit pins
     /// the values measured at its rest pose, so a stretched frame moves the yarn but never
     /// re-tunes it (which would change every loop's shape from one frame to the next).
     pub stitch_size: Option<(f32, f32)>,
@@ -393,24 +395,36 @@ impl PreparedKnit {
         )?;
 
         let cyclic_v = surface.cyclic_v();
+        let domain = surface.domain();
+        let cyclic = (surface.cyclic_u(), cyclic_v);
+        let base = Lattice::perturbed(domain, courses, wales, cyclic.0, cyclic.1, p.kappa, p.seed)?;
+        // The mean stitch, which the default yarn follows.
+        let mean = (
+            len_u / wales as f32,
+            if cyclic_v {
+                len_v / courses as f32
+            } else {
+                len_v / (courses as f32 + 2.0 * ROW_OVERHANG)
+            },
+        );
         let (stitch_width, stitch_height) = match p.stitch_size {
             Some(size) => size,
-            None => (
-                len_u / wales as f32,
-                if cyclic_v {
-                    len_v / courses as f32
-                } else {
-                    len_v / (courses as f32 + 2.0 * ROW_OVERHANG)
-                },
-            ),
+            None => {
+                let (rw, rh) = run_in_pool(p.threads, || {
+                    crate::tight_stitches::tight_ratios(surface, &base)
+                })?;
+                (mean.0 * rw, mean.1 * rh)
+            }
         };
+        let yarn_width = p.stitch_size.map_or(mean.0, |s| s.0);
         let radius = p
             .yarn_radius
-            .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * stitch_width / widened);
-        if 2.0 * radius > stitch_width.min(2.0 * stitch_height) {
+            .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * yarn_width / widened);
+        let (check_w, check_h) = p.stitch_size.unwrap_or(mean);
+        if 2.0 * radius > check_w.min(2.0 * check_h) {
             return Err(KnitError::Parameter(format!(
-                "the yarn ({:.4} thick) is thicker than a stitch ({stitch_width:.4} x \
-                 {stitch_height:.4}): use a thinner yarn or fewer stitches",
+                "the yarn ({:.4} thick) is thicker than a stitch ({check_w:.4} x \
+                 {check_h:.4}): use a thinner yarn or fewer stitches",
                 2.0 * radius
             )));
         }
@@ -422,15 +436,8 @@ impl PreparedKnit {
             p.tension,
         );
 
-        let domain = surface.domain();
-        let cyclic = (surface.cyclic_u(), cyclic_v);
         let (width_d, height_d) = tuning::proportions(stitch_width, stitch_height, 2.0 * radius);
-        let lattice = crate::skeleton::leaning_rows::shaped(
-            Lattice::perturbed(domain, courses, wales, cyclic.0, cyclic.1, p.kappa, p.seed)?,
-            pattern,
-            width_d,
-            height_d,
-        );
+        let lattice = crate::skeleton::leaning_rows::shaped(base, pattern, width_d, height_d);
         let sampling = SplineSampling {
             samples_per_loop: s,
             tension: p.tension,

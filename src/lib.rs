@@ -35,6 +35,7 @@ pub mod portable_math;
 pub mod skeleton;
 pub mod surface;
 pub mod texture;
+pub mod tight_stitches;
 
 #[cfg(feature = "python")]
 mod python;
