@@ -169,11 +169,10 @@ fn measured(surface: &dyn Surface, pattern: &StitchPattern) -> (f32, CrossingOrd
 /// narrowed stitches (0.73 of the mean width at its edges), C6 and feather and fan, whose
 /// 18-stitch repeat the 24-stitch sheet and 36-stitch tube cut or squeeze.
 const SHORT_OF_TARGET: &[(&str, f32)] = &[
-    ("cable_c4", 0.90),
     ("cable_c6", 0.79),
     ("horseshoe_cable", 0.91),
     ("honeycomb_cable", 0.90),
-    ("feather_and_fan", 0.85),
+    ("feather_and_fan", 0.83),
 ];
 
 /// Clearance (min, in diameters) of every preset on a flat sheet, a cylinder and a sphere at

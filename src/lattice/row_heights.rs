@@ -66,12 +66,16 @@ impl RowHeights {
 
     /// The displacement (in rows) of every node `(r, c)` of a lattice of `courses` courses
     /// and `wales` wales, row-major `(courses + 2) x (wales + 1)`. The first node row stays
-    /// where it is; so does the last of a non-cyclic v (row `courses + 1`), and row `courses`
-    /// of a cyclic v (the first one a period on), the remainder of a partial repeat spread
-    /// evenly over the rows below it. Along a cyclic v, row `courses + 1` repeats row 1.
+    /// where it is, and so does row `courses` (the top of the last course; along a cyclic v
+    /// the first row a period on), the remainder of a partial repeat spread evenly over the
+    /// rows below it. Row `courses + 1` stays too along a non-cyclic v, and repeats row 1
+    /// along a cyclic one.
     pub fn node_displacements(&self, courses: usize, wales: usize, cyclic_v: bool) -> Vec<f32> {
         let cols = wales + 1;
-        let last = if cyclic_v { courses } else { courses + 1 };
+        // Row `courses` is the top of the last course (cyclic: the first row a period on):
+        // it stays, so the last course's heads (0.35 of a row above it) stay on the fabric.
+        // Row `courses + 1` of a non-cyclic v only gives those heads their height: regular.
+        let last = courses;
         let mut d = vec![0.0f32; (courses + 2) * cols];
         for c in 0..cols {
             let end = self.displacement(last, c);
@@ -114,11 +118,17 @@ mod tests {
             assert_eq!(at(r, 1), 0.0);
             assert_eq!(at(r, 3), 0.0);
         }
-        // 8 courses + the top node row: the partial repeat's remainder (0.6 at row 9) is
-        // spread evenly, so both ends stay put.
+        // 8 courses (two whole repeats): the first and last rows stay put.
         assert_eq!(at(0, 0), 0.0);
-        assert!(at(9, 0).abs() < 1e-6);
-        assert!((at(1, 0) - (0.6 - 0.6 / 9.0)).abs() < 1e-5, "{}", at(1, 0));
+        assert!(at(8, 0).abs() < 1e-6);
+        assert_eq!(at(9, 0), 0.0);
+        assert!((at(1, 0) - 0.6).abs() < 1e-5, "{}", at(1, 0));
+        // 7 courses: the partial repeat's remainder (rows 4..6 of column 0 are 1.6, 0.8, 0.8
+        // tall: 0.2 over at row 7) is spread evenly over the rows below.
+        let d7 = h.node_displacements(7, 3, false);
+        let end = 0.6 - 0.2 * 2.0;
+        assert!(d7[7 * 4].abs() < 1e-6);
+        assert!((d7[4] - (0.6 - end / 7.0)).abs() < 1e-5, "{}", d7[4]);
         // Tile heights stay positive.
         for r in 0..9 {
             assert!(1.0 + at(r + 1, 0) - at(r, 0) > 0.5);
