@@ -428,7 +428,7 @@ impl PreparedKnit {
                 2.0 * radius
             )));
         }
-        let (offsets, flat_clearance) = tuning::tuned_offsets(
+        let (offsets, flat_clearance, per_lean) = tuning::tuned_offsets(
             pattern,
             stitch_width,
             stitch_height,
@@ -437,7 +437,8 @@ impl PreparedKnit {
         );
 
         let (width_d, height_d) = tuning::proportions(stitch_width, stitch_height, 2.0 * radius);
-        let lattice = crate::skeleton::leaning_rows::shaped(base, pattern, width_d, height_d);
+        let lattice =
+            crate::skeleton::leaning_rows::shaped(base, pattern, width_d, height_d, per_lean);
         let sampling = SplineSampling {
             samples_per_loop: s,
             tension: p.tension,

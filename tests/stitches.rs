@@ -162,18 +162,13 @@ fn measured(surface: &dyn Surface, pattern: &StitchPattern) -> (f32, CrossingOrd
 /// Presets that do not reach the 0.95-diameter clearance target everywhere yet, with the
 /// floor they hold (the smallest clearance measured over the three surfaces, less 0.02): a
 /// regression bound, not the goal. At the default gauge rows are 3.5 yarn diameters tall;
-/// contact relief (`skeleton/contact.rs`), taller rows where loops lean
-/// (`skeleton/leaning_rows.rs`), denser sampling of leaning courses
+/// contact relief (`skeleton/contact.rs`), taller rows where loops lean, their height chosen
+/// by the tuning (`skeleton/leaning_rows.rs`), denser sampling of leaning courses
 /// (`skeleton/sampling_density.rs`) and tuning for the tighter stitches (`tight_stitches.rs`)
-/// clear the rest. What is left: loops leaning two or three columns in the sphere band's
-/// narrowed stitches (0.73 of the mean width at its edges), C6 and feather and fan, whose
-/// 18-stitch repeat the 24-stitch sheet and 36-stitch tube cut or squeeze.
-const SHORT_OF_TARGET: &[(&str, f32)] = &[
-    ("cable_c6", 0.79),
-    ("horseshoe_cable", 0.91),
-    ("honeycomb_cable", 0.90),
-    ("feather_and_fan", 0.83),
-];
+/// clear every other preset. Feather and fan's 18-stitch repeat does not fit the 24-stitch
+/// sheet: the part the edge cuts is knitted straight and meets relief corrections made for
+/// the middle of the fabric (0.815 there; 0.945 on the cylinder, 0.953 on the sphere).
+const SHORT_OF_TARGET: &[(&str, f32)] = &[("feather_and_fan", 0.79)];
 
 /// Clearance (min, in diameters) of every preset on a flat sheet, a cylinder and a sphere at
 /// default settings, and the crossing-order metric (DESIGN.md section 7) on the sheet and the

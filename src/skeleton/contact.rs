@@ -83,7 +83,7 @@ struct Patch {
 }
 
 impl Patch {
-    fn new(pattern: &StitchPattern, width: f32, height: f32) -> Self {
+    fn new(pattern: &StitchPattern, width: f32, height: f32, per_lean: f32) -> Self {
         // One repeat with a margin of stitches round it. Any `height` consecutive courses and
         // `width` consecutive wales hold every pattern cell once, so the repeat may start
         // anywhere.
@@ -98,6 +98,7 @@ impl Patch {
             pattern,
             width,
             height,
+            per_lean,
         );
         let pieces = yarn_pieces(&lattice, &vec![true; courses * wales]);
         Patch {
@@ -166,7 +167,8 @@ fn polylines(lines: &[Vec<Vec3>]) -> Vec<YarnPolyline<'_>> {
 }
 
 /// Finds the relief of `pattern` knitted with stitches `width x height` yarn diameters and
-/// spline `tension`, on top of `offsets` (in diameters, without relief). Returns `None` where
+/// spline `tension`, rows of leaning loops `per_lean` ([`super::leaning_rows`]), on top of
+/// `offsets` (in diameters, without relief). Returns `None` where
 /// the patch already clears [`TARGET`], and the patch's minimum clearance with the relief
 /// (without it, if `None`).
 pub fn relieve(
@@ -174,9 +176,10 @@ pub fn relieve(
     width: f32,
     height: f32,
     tension: f32,
+    per_lean: f32,
     offsets: &NormalOffsets,
 ) -> (Option<ContactRelief>, f32) {
-    let patch = Patch::new(pattern, width, height);
+    let patch = Patch::new(pattern, width, height, per_lean);
     let sampling = SplineSampling {
         samples_per_loop: SAMPLES,
         tension,

@@ -52,6 +52,9 @@ pub struct Tuned {
     pub offsets: NormalOffsets,
     /// Minimum clearance on the flat patch, in diameters.
     pub clearance_min: f32,
+    /// Height per column of lean of the rows where loops lean, in stitch widths
+    /// ([`super::leaning_rows::ROOM_PER_LEAN`]): the one that cleared best.
+    pub per_lean: f32,
 }
 
 fn cache() -> &'static Mutex<HashMap<Key, Tuned>> {
@@ -68,14 +71,15 @@ pub fn proportions(stitch_width: f32, stitch_height: f32, diameter: f32) -> (f32
 
 /// Tunes the normal offsets for `pattern` knitted with stitches `stitch_width x stitch_height`
 /// (scene units, measured on the surface) and yarn of `diameter`. Returns offsets in scene
-/// units and the flat-patch clearance in diameters.
+/// units, the flat-patch clearance in diameters and the rows of leaning loops' height per
+/// column of lean ([`super::leaning_rows`]).
 pub fn tuned_offsets(
     pattern: &StitchPattern,
     stitch_width: f32,
     stitch_height: f32,
     diameter: f32,
     tension: f32,
-) -> (NormalOffsets, f32) {
+) -> (NormalOffsets, f32, f32) {
     let key = Key {
         pattern: pattern.clone(),
         width: (stitch_width / diameter / Q_RATIO).round() as i64,
@@ -102,7 +106,11 @@ pub fn tuned_offsets(
             t
         }
     };
-    (tuned.offsets.scaled(diameter), tuned.clearance_min)
+    (
+        tuned.offsets.scaled(diameter),
+        tuned.clearance_min,
+        tuned.per_lean,
+    )
 }
 
 /// Clearance (min, p01) in diameters of `pattern` on a flat patch with unit yarn diameter.
@@ -111,9 +119,10 @@ pub fn patch_clearance(
     width: f32,
     height: f32,
     tension: f32,
+    per_lean: f32,
     offsets: &NormalOffsets,
 ) -> (f32, f32) {
-    let (min, p01, _) = patch_measure(pattern, width, height, tension, offsets, false);
+    let (min, p01, _) = patch_measure(pattern, width, height, tension, per_lean, offsets, false);
     (min, p01)
 }
 
@@ -124,6 +133,7 @@ fn patch_measure(
     width: f32,
     height: f32,
     tension: f32,
+    per_lean: f32,
     offsets: &NormalOffsets,
     order: bool,
 ) -> (f32, f32, f64) {
@@ -138,6 +148,7 @@ fn patch_measure(
         pattern,
         width,
         height,
+        per_lean,
     );
     let built = vec![true; courses * wales];
     let pieces = yarn_pieces(&lattice, &built);
@@ -183,9 +194,47 @@ fn patch_measure(
     (c.min, c.p01, wrong)
 }
 
+/// Clearance on a relieved patch good enough to stop trying other row heights: the goal
+/// and a margin for the output's coarser sampling and curved surfaces.
+const ENOUGH: f32 = 0.96;
+
+/// Tunes at each height of leaning rows ([`super::leaning_rows::ROOM_PER_LEAN`], in order)
+/// until one clears [`ENOUGH`], and keeps the best. Patterns without leaning loops are tuned
+/// once.
+fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned {
+    let candidates = if super::leaning_rows::leans(pattern) {
+        super::leaning_rows::ROOM_PER_LEAN
+    } else {
+        &super::leaning_rows::ROOM_PER_LEAN[..1]
+    };
+    let mut best: Option<Tuned> = None;
+    for &per_lean in candidates {
+        let t = tune_at(pattern, width, height, tension, per_lean);
+        if best
+            .as_ref()
+            .is_none_or(|b| t.clearance_min > b.clearance_min)
+        {
+            best = Some(t);
+        }
+        if best.as_ref().is_some_and(|b| b.clearance_min >= ENOUGH) {
+            break;
+        }
+    }
+    best.unwrap_or(Tuned {
+        offsets: NormalOffsets {
+            x: [0.5; COEFFICIENTS],
+            diameter: 1.0,
+            shape: DEFAULT_SHAPE,
+            relief: None,
+        },
+        clearance_min: 0.0,
+        per_lean: super::leaning_rows::ROOM_PER_LEAN[0],
+    })
+}
+
 /// Deterministic compass search over the six signed coefficients in `[-1, 1]` diameters,
 /// started from each of a few fixed points; the best result wins.
-fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned {
+fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_lean: f32) -> Tuned {
     let score = |x: &[f32; COEFFICIENTS]| {
         let offsets = NormalOffsets {
             x: *x,
@@ -193,7 +242,7 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
             shape: DEFAULT_SHAPE,
             relief: None,
         };
-        let (min, p01) = patch_clearance(pattern, width, height, tension, &offsets);
+        let (min, p01) = patch_clearance(pattern, width, height, tension, per_lean, &offsets);
         (min + 0.1 * p01, min)
     };
     // Every start's optimum, best first.
@@ -243,9 +292,10 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
             Tuned {
                 offsets,
                 clearance_min,
+                per_lean,
             }
         } else {
-            tune_shape(pattern, width, height, tension, offsets, &free)
+            tune_shape(pattern, width, height, tension, per_lean, offsets, &free)
         };
         if tuned.clearance_min >= contact::TARGET {
             // Clear already: no relief, and no other start can do better where it matters.
@@ -260,11 +310,12 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
         // Where one coefficient per kind of key point cannot keep the yarns apart, local
         // corrections do. The best optimum unrelieved is not always the one that relieves
         // best: the next is tried while the relief falls short of the goal.
-        let rr = contact::relieve(pattern, width, height, tension, &tuned.offsets);
+        let rr = contact::relieve(pattern, width, height, tension, per_lean, &tuned.offsets);
         let outcome = match rr {
             (Some(relief), reached) if reached > tuned.clearance_min => Tuned {
                 offsets: tuned.offsets.with_relief(relief),
                 clearance_min: reached,
+                per_lean,
             },
             _ => tuned,
         };
@@ -286,6 +337,7 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
             relief: None,
         },
         clearance_min: 0.0,
+        per_lean,
     })
 }
 
@@ -337,12 +389,13 @@ fn tune_shape(
     width: f32,
     height: f32,
     tension: f32,
+    per_lean: f32,
     mut offsets: NormalOffsets,
     free: &[usize],
 ) -> Tuned {
     // Clearance, but never at the price of a crossing the wrong way round.
     let score = |o: &NormalOffsets| {
-        let (min, p01, wrong) = patch_measure(pattern, width, height, tension, o, true);
+        let (min, p01, wrong) = patch_measure(pattern, width, height, tension, per_lean, o, true);
         (min + 0.1 * p01 - 100.0 * wrong as f32, min)
     };
     let (mut best, mut best_min) = score(&offsets);
@@ -373,6 +426,7 @@ fn tune_shape(
     Tuned {
         offsets,
         clearance_min: best_min,
+        per_lean,
     }
 }
 
