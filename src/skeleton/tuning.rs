@@ -210,17 +210,27 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
     let mut best: Option<Tuned> = None;
     for &per_lean in candidates {
         let t = tune_at(pattern, width, height, tension, per_lean);
-        if best
-            .as_ref()
-            .is_none_or(|b| t.clearance_min > b.clearance_min)
-        {
-            best = Some(t);
-        }
-        if best.as_ref().is_some_and(|b| b.clearance_min >= ENOUGH) {
+        if keep_best(&mut best, t, ENOUGH) {
             break;
         }
     }
-    best.unwrap_or(Tuned {
+    best.unwrap_or_else(|| untuned(super::leaning_rows::ROOM_PER_LEAN[0]))
+}
+
+/// Keeps `t` in `best` if it clears more; whether `best` now clears `enough`.
+fn keep_best(best: &mut Option<Tuned>, t: Tuned, enough: f32) -> bool {
+    if best
+        .as_ref()
+        .is_none_or(|b| t.clearance_min > b.clearance_min)
+    {
+        *best = Some(t);
+    }
+    best.as_ref().is_some_and(|b| b.clearance_min >= enough)
+}
+
+/// Offsets of half a diameter everywhere: what a search that found nothing returns.
+fn untuned(per_lean: f32) -> Tuned {
+    Tuned {
         offsets: NormalOffsets {
             x: [0.5; COEFFICIENTS],
             diameter: 1.0,
@@ -228,8 +238,8 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
             relief: None,
         },
         clearance_min: 0.0,
-        per_lean: super::leaning_rows::ROOM_PER_LEAN[0],
-    })
+        per_lean,
+    }
 }
 
 /// Deterministic compass search over the six signed coefficients in `[-1, 1]` diameters,
@@ -319,26 +329,11 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
             },
             _ => tuned,
         };
-        if result
-            .as_ref()
-            .is_none_or(|r| outcome.clearance_min > r.clearance_min)
-        {
-            result = Some(outcome);
-        }
-        if result.as_ref().is_some_and(|r| r.clearance_min >= GOAL) {
+        if keep_best(&mut result, outcome, GOAL) {
             break;
         }
     }
-    result.unwrap_or(Tuned {
-        offsets: NormalOffsets {
-            x: [0.5; COEFFICIENTS],
-            diameter: 1.0,
-            shape: DEFAULT_SHAPE,
-            relief: None,
-        },
-        clearance_min: 0.0,
-        per_lean,
-    })
+    result.unwrap_or_else(|| untuned(per_lean))
 }
 
 /// The [`Shape`] coefficients that change the fabric of `pattern`.
