@@ -66,19 +66,27 @@ impl RowHeights {
 
     /// The displacement (in rows) of every node `(r, c)` of a lattice of `courses` courses
     /// and `wales` wales, row-major `(courses + 2) x (wales + 1)`. The first node row stays
-    /// where it is, and so does row `courses` (the top of the last course; along a cyclic v
-    /// the first row a period on), the remainder of a partial repeat spread evenly over the
-    /// rows below it. Row `courses + 1` stays too along a non-cyclic v, and repeats row 1
-    /// along a cyclic one.
+    /// where it is. Where the courses end inside a repeat, the remainder is spread evenly over
+    /// the rows below so that row `courses` (the top of the last course) stays on the fabric:
+    ///
+    /// - along a cyclic v, column by column, so that row `courses` is row 0 a period on, and
+    ///   row `courses + 1` repeats row 1;
+    /// - along an open v, by the same amount in every column (the most any column has over),
+    ///   so that every row keeps the pattern's shape: a column-by-column ramp shears the
+    ///   columns against each other by up to the whole remainder at the top, where a loop
+    ///   leaning three columns then lands a third of a row off (feather and fan's top
+    ///   course on the test sleeve measured 0.945 diameters, against 0.953 or more on its
+    ///   courses below). The top row is then scalloped, lower in columns that had less over,
+    ///   as the cast-off edge of a cable or a lace is; row `courses + 1` follows it a
+    ///   regular row up, so the last course's heads stand their usual height above it.
     pub fn node_displacements(&self, courses: usize, wales: usize, cyclic_v: bool) -> Vec<f32> {
         let cols = wales + 1;
-        // Row `courses` is the top of the last course (cyclic: the first row a period on):
-        // it stays, so the last course's heads (0.35 of a row above it) stay on the fabric.
-        // Row `courses + 1` of a non-cyclic v only gives those heads their height: regular.
         let last = courses;
+        let ends: Vec<f64> = (0..cols).map(|c| self.displacement(last, c)).collect();
+        let highest = ends.iter().copied().fold(0.0f64, f64::max);
         let mut d = vec![0.0f32; (courses + 2) * cols];
-        for c in 0..cols {
-            let end = self.displacement(last, c);
+        for (c, &own_end) in ends.iter().enumerate() {
+            let end = if cyclic_v { own_end } else { highest };
             for r in 0..=last {
                 let ramp = if last == 0 {
                     0.0
@@ -87,9 +95,15 @@ impl RowHeights {
                 };
                 d[r * cols + c] = (self.displacement(r, c) - ramp) as f32;
             }
-            if cyclic_v && courses >= 1 {
-                d[(courses + 1) * cols + c] = d[cols + c];
-            }
+            d[(courses + 1) * cols + c] = if cyclic_v {
+                if courses >= 1 {
+                    d[cols + c]
+                } else {
+                    0.0
+                }
+            } else {
+                d[courses * cols + c]
+            };
         }
         d
     }
@@ -129,11 +143,24 @@ mod tests {
         let end = 0.6 - 0.2 * 2.0;
         assert!(d7[7 * 4].abs() < 1e-6);
         assert!((d7[4] - (0.6 - end / 7.0)).abs() < 1e-5, "{}", d7[4]);
+        // Along an open v every column ramps by the most any has over (0.2 rows, column 0's),
+        // so the regular column 1 keeps regular rows, a little shorter, and its top row ends
+        // that much lower (a scalloped top); row `courses + 1` follows the top row.
+        assert!((d7[4 + 1] + 0.2 / 7.0).abs() < 1e-6, "{}", d7[4 + 1]);
+        assert!((d7[7 * 4 + 1] + 0.2).abs() < 1e-6);
+        for c in 0..4 {
+            assert_eq!(d7[8 * 4 + c], d7[7 * 4 + c]);
+            assert!(d7[7 * 4 + c] <= 1e-6);
+        }
         // Tile heights stay positive.
         for r in 0..9 {
             assert!(1.0 + at(r + 1, 0) - at(r, 0) > 0.5);
         }
-        // Cyclic v: row `courses` stays, row `courses + 1` repeats row 1.
+        // Cyclic v: row `courses` stays, row `courses + 1` repeats row 1, column by column.
+        let c7 = h.node_displacements(7, 3, true);
+        assert!(c7[7 * 4].abs() < 1e-6);
+        assert_eq!(c7[7 * 4 + 1], 0.0);
+        assert_eq!(c7[8 * 4], c7[4]);
         let d = h.node_displacements(8, 3, true);
         assert_eq!(d[8 * 4], 0.0);
         assert_eq!(d[9 * 4], d[4]);
