@@ -436,6 +436,27 @@ impl PreparedKnit {
             p.tension,
         );
 
+        // Wales whose edge cuts a crossing or a decrease are knitted straight, with offsets
+        // tuned for the pattern straightened.
+        let straight_wales: Vec<bool> = if pattern.has_crossings() {
+            (0..base.wales)
+                .map(|w| !crate::skeleton::stitch_shape::wale_knits_whole(&base, pattern, w))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let offsets = if straight_wales.contains(&true) {
+            let (straight, _, _) = tuning::tuned_offsets(
+                &pattern.straightened(),
+                stitch_width,
+                stitch_height,
+                2.0 * radius,
+                p.tension,
+            );
+            offsets.with_straight(straight, straight_wales)
+        } else {
+            offsets
+        };
         let (width_d, height_d) = tuning::proportions(stitch_width, stitch_height, 2.0 * radius);
         let lattice =
             crate::skeleton::leaning_rows::shaped(base, pattern, width_d, height_d, per_lean);

@@ -125,6 +125,27 @@ impl StitchPattern {
         self.height
     }
 
+    /// The pattern with every loop straight: no crossing, no gathering (each loop lands in
+    /// its own column, in no layer), every stitch's face and form kept. This is what a piece
+    /// knits where its edge cuts a crossing or a decrease ([`crate::skeleton::stitch_shape`]):
+    /// the partial repeat worked plain, as a knitter works the stitches a repeat does not fit.
+    pub fn straightened(&self) -> Self {
+        let mut p = self.clone();
+        p.name = format!("{} (straight)", self.name);
+        for c in &mut p.cells {
+            c.land_offset = 0;
+            c.land_layer = 0;
+        }
+        p
+    }
+
+    /// Whether any loop crosses or is gathered with another (a cable, a decrease).
+    pub fn has_crossings(&self) -> bool {
+        self.cells
+            .iter()
+            .any(|c| c.land_offset != 0 || c.land_layer != 0)
+    }
+
     /// The columns, relative to `wale`, of the smallest run of stitches of its row that the
     /// loop of stitch (course, wale) crosses or is gathered with: `(lo, hi)` with
     /// `lo <= 0 <= hi`, such that every loop of columns `wale + lo ..= wale + hi` lands in

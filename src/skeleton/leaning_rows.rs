@@ -13,6 +13,7 @@
 //! How tall is a choice the tuning makes ([`ROOM_PER_LEAN`]): a pure function of the
 //! pattern, the stitch proportions (in yarn diameters) and that choice.
 
+use super::stitch_shape::{landing, wale_knits_whole};
 use crate::lattice::{Lattice, RowHeights};
 use crate::pattern::StitchPattern;
 
@@ -46,31 +47,111 @@ pub fn leans(pattern: &StitchPattern) -> bool {
 
 /// The row heights of `pattern` knitted with stitches `width x height` yarn diameters and
 /// `per_lean` stitch widths of height per column of lean, or `None` where every row is tall
-/// enough already (or no row can give any height away).
+/// enough already (or no row can give any height away). One repeat wide: node column `c` is
+/// the line between pattern columns `c - 1` and `c`.
 pub fn leaning_row_heights(
     pattern: &StitchPattern,
     width: f32,
     height: f32,
     per_lean: f32,
 ) -> Option<RowHeights> {
+    let need = pattern_needs(pattern, width, height, per_lean)?;
+    heights_from_needs(pattern.height(), pattern.width(), &need)
+}
+
+/// The row heights of a whole piece knitted on `lattice` (not a window): the pattern's
+/// ([`leaning_row_heights`]) repeated, one node column per node column of the lattice, except
+/// on the node lines of wales the piece knits straight ([`wale_knits_whole`]: its edge cuts
+/// a crossing or a decrease there), which take only what the piece's own loops need
+/// ([`landing`]): regular rows where nothing leans.
+pub fn fabric_row_heights(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    width: f32,
+    height: f32,
+    per_lean: f32,
+) -> Option<RowHeights> {
     let (rows, cols) = (pattern.height(), pattern.width());
+    let periodic = pattern_needs(pattern, width, height, per_lean)?;
+    let wales = lattice.wales;
+    let straight: Vec<usize> = (0..wales)
+        .filter(|&w| !wale_knits_whole(lattice, pattern, w))
+        .collect();
+    if straight.is_empty() {
+        return heights_from_needs(rows, cols, &periodic);
+    }
+    let node_cols = if lattice.cyclic_u { wales } else { wales + 1 };
+    let own = needs(
+        rows,
+        wales,
+        node_cols,
+        |r, w| landing(lattice, pattern, r, w) - w as isize,
+        width,
+        height,
+        per_lean,
+    );
+    let mut need: Vec<f32> = (0..rows * node_cols)
+        .map(|i| periodic[(i / node_cols) * cols + (i % node_cols) % cols])
+        .collect();
+    for w in straight {
+        for c in [w, (w + 1) % node_cols] {
+            for r in 0..rows {
+                need[r * node_cols + c] = own[r * node_cols + c];
+            }
+        }
+    }
+    heights_from_needs(rows, node_cols, &need)
+}
+
+/// The height each (row, node column) of one repeat of `pattern` needs (see [`needs`]), or
+/// `None` for proportions that are not finite and positive.
+fn pattern_needs(
+    pattern: &StitchPattern,
+    width: f32,
+    height: f32,
+    per_lean: f32,
+) -> Option<Vec<f32>> {
     if !(width.is_finite() && height.is_finite() && width > 0.0 && height > 0.0) {
         return None;
     }
-    // The height each (row, node column) needs, in regular rows (0: no leaning loop).
+    let cols = pattern.width();
+    Some(needs(
+        pattern.height(),
+        cols,
+        cols,
+        |r, w| isize::from(pattern.stitch(r, w).land_offset),
+        width,
+        height,
+        per_lean,
+    ))
+}
+
+/// The height, in regular rows, each (row, node column) needs for `rows` rows of `stitches`
+/// columns whose loop at (row, column) leans `lean(row, column)` columns (0: no leaning loop
+/// there), row-major over `node_cols` node columns; a node column past the last wraps round
+/// to the first (`node_cols == stitches` is cyclic).
+fn needs(
+    rows: usize,
+    stitches: usize,
+    node_cols: usize,
+    lean: impl Fn(usize, usize) -> isize,
+    width: f32,
+    height: f32,
+    per_lean: f32,
+) -> Vec<f32> {
+    let cols = node_cols;
     let mut need = vec![0.0f32; rows * cols];
     for r in 0..rows {
-        for w in 0..cols {
-            let s = pattern.stitch(r, w);
-            if s.land_offset == 0 {
+        for w in 0..stitches {
+            let offset = lean(r, w);
+            if offset == 0 {
                 continue;
             }
-            let lean = s.land_offset.unsigned_abs() as usize;
-            let h = room_needed(lean, width, per_lean) / height;
-            let (lo, hi) = if s.land_offset > 0 {
-                (w as isize, w as isize + s.land_offset as isize + 1)
+            let h = room_needed(offset.unsigned_abs(), width, per_lean) / height;
+            let (lo, hi) = if offset > 0 {
+                (w as isize, w as isize + offset + 1)
             } else {
-                (w as isize + s.land_offset as isize, w as isize + 1)
+                (w as isize + offset, w as isize + 1)
             };
             for c in lo..=hi {
                 let c = c.rem_euclid(cols as isize) as usize;
@@ -78,6 +159,12 @@ pub fn leaning_row_heights(
             }
         }
     }
+    need
+}
+
+/// Row heights from what each (row, node column) needs ([`needs`]): the rows that need more
+/// than a regular row get it and the rest of the column gathers to pay for it.
+fn heights_from_needs(rows: usize, cols: usize, need: &[f32]) -> Option<RowHeights> {
     let mut heights = vec![1.0f32; rows * cols];
     for c in 0..cols {
         let tall: Vec<usize> = (0..rows).filter(|&r| need[r * cols + c] > 1.0).collect();
@@ -110,8 +197,76 @@ pub fn shaped(
     height: f32,
     per_lean: f32,
 ) -> Lattice {
-    match leaning_row_heights(pattern, width, height, per_lean) {
+    let heights = if lattice.window {
+        leaning_row_heights(pattern, width, height, per_lean)
+    } else {
+        fabric_row_heights(&lattice, pattern, width, height, per_lean)
+    };
+    match heights {
         Some(h) => lattice.with_row_heights(&h),
         None => lattice,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::surface::UvRect;
+    use glam::Vec2;
+
+    fn lattice(wales: usize, cyclic_u: bool) -> Lattice {
+        let domain = UvRect {
+            min: Vec2::ZERO,
+            max: Vec2::new(wales as f32, 28.0),
+        };
+        Lattice::regular(domain, 28, wales, cyclic_u, false)
+    }
+
+    #[test]
+    fn a_cut_repeat_keeps_regular_rows_and_whole_ones_the_patterns() {
+        let pattern = StitchPattern::preset("feather_and_fan").unwrap();
+        let (w, h, k) = (5.0, 3.5, ROOM_PER_LEAN[0]);
+        let own = leaning_row_heights(&pattern, w, h, k).unwrap();
+        // 24 wales: one whole 18-stitch repeat, then 6 whose decreases the edge cuts.
+        let cut = lattice(24, false);
+        assert!((0..18).all(|x| wale_knits_whole(&cut, &pattern, x)));
+        assert!((18..24).all(|x| !wale_knits_whole(&cut, &pattern, x)));
+        let fabric = fabric_row_heights(&cut, &pattern, w, h, k).unwrap();
+        for r in 0..pattern.height() {
+            // The node lines of the whole repeat's wales keep the pattern's heights (line 18
+            // borders a cut wale and takes only what the whole repeat's loops need there).
+            for c in 0..18 {
+                assert_eq!(fabric.height(r, c), own.height(r, c), "row {r} line {c}");
+            }
+            // Nothing leans in the cut wales: regular rows.
+            for c in 19..=24 {
+                assert_eq!(fabric.height(r, c), 1.0, "row {r} line {c}");
+            }
+        }
+        // Whole repeats (here round a tube): the pattern's heights, repeated.
+        let whole = lattice(36, true);
+        assert!((0..36).all(|x| wale_knits_whole(&whole, &pattern, x)));
+        let fabric = fabric_row_heights(&whole, &pattern, w, h, k).unwrap();
+        for r in 0..pattern.height() {
+            for c in 0..36 {
+                assert_eq!(fabric.height(r, c), own.height(r, c % 18));
+            }
+        }
+    }
+
+    #[test]
+    fn straightened_patterns_do_not_lean() {
+        let pattern = StitchPattern::preset("cable_c6").unwrap();
+        assert!(pattern.has_crossings() && leans(&pattern));
+        let straight = pattern.straightened();
+        assert!(!straight.has_crossings() && !leans(&straight));
+        assert_eq!(straight.width(), pattern.width());
+        for r in 0..pattern.height() {
+            for w in 0..pattern.width() {
+                assert_eq!(straight.stitch(r, w).face, pattern.stitch(r, w).face);
+                assert_eq!(straight.stitch(r, w).form, pattern.stitch(r, w).form);
+            }
+        }
+        assert!(leaning_row_heights(&straight, 5.0, 3.5, ROOM_PER_LEAN[0]).is_none());
     }
 }

@@ -21,7 +21,7 @@ pub mod stitch_shape;
 pub mod tuning;
 
 pub use key_points::{boundary_sinker, key_points, KEY_POINTS};
-pub use offsets::{NormalOffsets, Shape, DEFAULT_SHAPE, SHAPE_COEFFICIENTS};
+pub use offsets::{NormalOffsets, Shape, StraightWales, DEFAULT_SHAPE, SHAPE_COEFFICIENTS};
 pub use spline::CardinalSpline;
 pub use stitch_shape::stitch_key_points;
 

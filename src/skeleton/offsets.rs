@@ -40,6 +40,22 @@ pub struct NormalOffsets {
     /// Per-stitch corrections where yarns would touch ([`super::contact`]), in diameters;
     /// `None`: none needed.
     pub relief: Option<Arc<ContactRelief>>,
+    /// The wales a piece knits straight because its edge cuts a crossing or a decrease there
+    /// ([`super::stitch_shape::wale_knits_whole`]), and their offsets. `None`: the piece has
+    /// no such wale (and a tuning patch never has).
+    pub straight: Option<Arc<StraightWales>>,
+}
+
+/// The wales of a piece knitted straight, and the offsets they take: tuned for the pattern
+/// with every loop straight ([`crate::pattern::StitchPattern::straightened`]), with that
+/// pattern's own relief. The whole pattern's offsets and relief are made for loops that
+/// lean there.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StraightWales {
+    /// Offsets of the straightened pattern, in the same units as the offsets holding them.
+    pub offsets: NormalOffsets,
+    /// Per wale of the piece: whether it is knitted straight.
+    pub wales: Vec<bool>,
 }
 
 /// The coefficients of [`NormalOffsets::shape`], each in yarn diameters.
@@ -81,6 +97,7 @@ impl NormalOffsets {
             diameter: 1.0,
             shape: DEFAULT_SHAPE,
             relief: None,
+            straight: None,
         }
     }
 
@@ -92,6 +109,24 @@ impl NormalOffsets {
         }
     }
 
+    /// These offsets, with `offsets` for the wales a piece knits straight (`wales[w]`).
+    pub fn with_straight(self, offsets: NormalOffsets, wales: Vec<bool>) -> Self {
+        Self {
+            straight: Some(Arc::new(StraightWales { offsets, wales })),
+            ..self
+        }
+    }
+
+    /// The offsets of wale `wale` of a piece, and whether its stitches take their relief:
+    /// the straightened pattern's for a wale knitted straight; otherwise these, relieved where
+    /// `whole_group` (the loop's whole crossing is on the piece).
+    pub fn for_wale(&self, wale: usize, whole_group: bool) -> (&NormalOffsets, bool) {
+        match &self.straight {
+            Some(s) if s.wales.get(wale).copied().unwrap_or(false) => (&s.offsets, true),
+            _ => (self, whole_group),
+        }
+    }
+
     /// Rescaled from diameters to scene units (`k`: the yarn diameter).
     pub fn scaled(self, k: f32) -> Self {
         Self {
@@ -99,6 +134,12 @@ impl NormalOffsets {
             diameter: self.diameter * k,
             shape: self.shape,
             relief: self.relief,
+            straight: self.straight.map(|s| {
+                Arc::new(StraightWales {
+                    offsets: s.offsets.clone().scaled(k),
+                    wales: s.wales.clone(),
+                })
+            }),
         }
     }
 

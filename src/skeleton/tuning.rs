@@ -236,6 +236,7 @@ fn untuned(per_lean: f32) -> Tuned {
             diameter: 1.0,
             shape: DEFAULT_SHAPE,
             relief: None,
+            straight: None,
         },
         clearance_min: 0.0,
         per_lean,
@@ -251,6 +252,7 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
             diameter: 1.0,
             shape: DEFAULT_SHAPE,
             relief: None,
+            straight: None,
         };
         let (min, p01) = patch_clearance(pattern, width, height, tension, per_lean, &offsets);
         (min + 0.1 * p01, min)
@@ -297,6 +299,7 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
             diameter: 1.0,
             shape: DEFAULT_SHAPE,
             relief: None,
+            straight: None,
         };
         let tuned = if free.is_empty() || !TUNE_SHAPE {
             Tuned {
