@@ -436,8 +436,8 @@ impl PreparedKnit {
             p.tension,
         );
 
-        // Wales whose edge cuts a crossing or a decrease are knitted straight, with offsets
-        // tuned for the pattern straightened.
+        // Wales whose edge cuts a crossing or a decrease are knitted straight, with a relief
+        // made for the pattern straightened.
         let straight_wales: Vec<bool> = if pattern.has_crossings() {
             (0..base.wales)
                 .map(|w| !crate::skeleton::stitch_shape::wale_knits_whole(&base, pattern, w))
@@ -445,9 +445,13 @@ impl PreparedKnit {
         } else {
             Vec::new()
         };
-        let offsets = if straight_wales.contains(&true) {
-            let (straight, _, _) = tuning::tuned_offsets(
-                &pattern.straightened(),
+        let offsets = if !straight_wales.contains(&true) {
+            offsets
+        } else if base.cyclic_u {
+            // Round a seam (explicit counts that are not whole repeats): no edge corrections,
+            // which a flat strip cannot make across the seam.
+            let straight = tuning::straight_offsets(
+                pattern,
                 stitch_width,
                 stitch_height,
                 2.0 * radius,
@@ -455,7 +459,14 @@ impl PreparedKnit {
             );
             offsets.with_straight(straight, straight_wales)
         } else {
-            offsets
+            tuning::offsets_with_straight_wales(
+                pattern,
+                stitch_width,
+                stitch_height,
+                2.0 * radius,
+                p.tension,
+                straight_wales,
+            )
         };
         let (width_d, height_d) = tuning::proportions(stitch_width, stitch_height, 2.0 * radius);
         let lattice =

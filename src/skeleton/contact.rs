@@ -14,8 +14,15 @@
 //! pattern cells; a few dozen rounds settle them. The result depends only on the pattern, the
 //! stitch proportions and the tension, and is cached with the tuned offsets.
 //!
+//! A piece whose edge cuts a crossing or a decrease knits those wales straight
+//! ([`super::StraightWales`]) with the relief of the pattern straightened; where they meet
+//! the wales knitted as the pattern says, neither relief was made for what is on the other
+//! side. [`relieve_edges`] pushes there the same way, on a flat strip of the piece itself
+//! one repeat of rows tall, into corrections per pattern row and wale of the piece
+//! ([`EdgeRelief`]), cached per piece width.
+//!
 //! Units: corrections are in yarn diameters, indexed by pattern cell (row, column) and key
-//! point k0..k5.
+//! point k0..k5 (by pattern row and wale of the piece for [`EdgeRelief`]).
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -45,6 +52,9 @@ const STEP: f32 = 0.1;
 /// Stitches round the measured repeat of the patch: wider than the furthest a loop leans
 /// (three columns, a 3/3 cable), and two rows above and below.
 const MARGIN_WALES: usize = 4;
+/// Wales either side of a wale knitted straight that [`relieve_edges`] corrects: as far as
+/// a loop leans (three columns).
+const EDGE_WALES: usize = 3;
 const MARGIN_COURSES: usize = 2;
 /// Samples per loop of the patch's centrelines.
 const SAMPLES: usize = 24;
@@ -70,6 +80,29 @@ impl ContactRelief {
             .iter()
             .flatten()
             .fold(0.0f32, |m, x| m.max(x.abs()))
+    }
+}
+
+/// Corrections made for one piece of fabric near the wales it knits straight (where an edge
+/// cuts a crossing or a decrease: [`super::StraightWales`]), per pattern row and wale, in
+/// yarn diameters: there, wales knitted straight meet wales knitted as the pattern says,
+/// and neither the pattern's relief nor the straightened pattern's was made for that.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EdgeRelief {
+    rows: usize,
+    /// Per wale of the piece: its first cell in `lambdas`, or `NO_CELL`.
+    first_cell: Vec<u32>,
+    /// `rows` cells per wale that has any.
+    lambdas: Vec<[f32; KEY_POINTS]>,
+}
+
+const NO_CELL: u32 = u32::MAX;
+
+impl EdgeRelief {
+    /// The corrections of stitch (`course`, `wale`), if made for its wale.
+    pub fn at(&self, course: usize, wale: usize) -> Option<[f32; KEY_POINTS]> {
+        let first = *self.first_cell.get(wale)?;
+        (first != NO_CELL).then(|| self.lambdas[first as usize + course % self.rows])
     }
 }
 
@@ -106,6 +139,41 @@ impl Patch {
             lattice,
             pieces,
             middle: (MARGIN_COURSES, MARGIN_WALES),
+        }
+    }
+
+    /// A flat strip of a piece of `wales` wales across u (open, not a window: its edges cut
+    /// crossings as the piece's do), one repeat of rows and a margin of courses tall, with
+    /// yarn only in the wales `built` says.
+    fn strip(
+        pattern: &StitchPattern,
+        width: f32,
+        height: f32,
+        per_lean: f32,
+        built_wales: &[bool],
+    ) -> Self {
+        let wales = built_wales.len();
+        let courses = pattern.height() + 2 * MARGIN_COURSES;
+        let plane = PlaneSurface {
+            width: wales as f32 * width,
+            height: (courses as f32 + 2.0 * crate::lattice::ROW_OVERHANG) * height,
+        };
+        let lattice = super::leaning_rows::shaped(
+            Lattice::regular(plane.domain(), courses, wales, false, false),
+            pattern,
+            width,
+            height,
+            per_lean,
+        );
+        let built: Vec<bool> = (0..courses)
+            .flat_map(|_| built_wales.iter().copied())
+            .collect();
+        let pieces = yarn_pieces(&lattice, &built);
+        Patch {
+            plane,
+            lattice,
+            pieces,
+            middle: (MARGIN_COURSES, 0),
         }
     }
 
@@ -185,29 +253,144 @@ pub fn relieve(
         tension,
     };
     let (h, w) = (pattern.height(), pattern.width());
-    let mut relief = ContactRelief {
-        height: h,
-        width: w,
-        lambdas: vec![[0.0; KEY_POINTS]; h * w],
+    let start = {
+        let lines = patch.centrelines(pattern, offsets, &sampling);
+        min_clearance(&lines)
     };
-    let measure = |o: &NormalOffsets| {
-        let lines = patch.centrelines(pattern, o, &sampling);
-        clearance(
-            &polylines(&lines),
-            1.0,
-            DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
-            3.0,
-        )
-        .min
-    };
-    let start = measure(offsets);
     if start >= TARGET {
         return (None, start);
     }
-    let mut best: (f32, Option<ContactRelief>) = (start, None);
+    let (r0, c0) = patch.middle;
+    let relief = |lambdas: &[[f32; KEY_POINTS]]| ContactRelief {
+        height: h,
+        width: w,
+        lambdas: lambdas.to_vec(),
+    };
+    let (best, reached) = relax(
+        &patch,
+        pattern,
+        &sampling,
+        vec![[0.0; KEY_POINTS]; h * w],
+        start,
+        |course, wale| {
+            ((r0..r0 + h).contains(&course) && (c0..c0 + w).contains(&wale))
+                .then(|| (course % h) * w + wale % w)
+        },
+        |lambdas| offsets.clone().with_relief(relief(lambdas)),
+    );
+    (best.map(|b| relief(&b)), reached)
+}
+
+/// Finds corrections for one piece near the wales it knits straight (`offsets.straight`,
+/// whose mask has one entry per wale of the piece; [`EdgeRelief`]), knitted with stitches
+/// `width x height` yarn diameters, spline `tension` and rows of leaning loops `per_lean`, on
+/// top of `offsets` (in diameters, with both reliefs). On a flat strip of the piece one
+/// repeat of rows tall,
+/// the wales within [`EDGE_WALES`] of a wale knitted straight are relieved as a pattern's
+/// middle repeat is ([`relieve`]), starting from the corrections they have, with
+/// [`MARGIN_WALES`] more round them standing still. `None` where the piece knits no wale
+/// straight, or where the strip clears [`TARGET`] already or nothing improved on it.
+pub fn relieve_edges(
+    pattern: &StitchPattern,
+    offsets: &NormalOffsets,
+    (width, height): (f32, f32),
+    tension: f32,
+    per_lean: f32,
+) -> Option<EdgeRelief> {
+    let straight = offsets.straight.as_ref()?;
+    let wales = straight.wales.len();
+    if !straight.wales.contains(&true) {
+        return None;
+    }
+    let near = |reach: usize| -> Vec<bool> {
+        (0..wales)
+            .map(|x| {
+                (x.saturating_sub(reach)..=(x + reach).min(wales - 1)).any(|y| straight.wales[y])
+            })
+            .collect()
+    };
+    let free = near(EDGE_WALES);
+    let built = near(EDGE_WALES + MARGIN_WALES);
+    let patch = Patch::strip(pattern, width, height, per_lean, &built);
+    let sampling = SplineSampling {
+        samples_per_loop: SAMPLES,
+        tension,
+    };
+    let rows = pattern.height();
+    let mut first_cell = vec![NO_CELL; wales];
+    let mut start = Vec::new();
+    for (x, _) in free.iter().enumerate().filter(|(_, f)| **f) {
+        first_cell[x] = start.len() as u32;
+        for r in 0..rows {
+            let whole = super::stitch_shape::group_on_fabric(&patch.lattice, pattern, r, x);
+            let (_, relief) = offsets.for_stitch(r, x, whole);
+            start.push(relief.unwrap_or([0.0; KEY_POINTS]));
+        }
+    }
+    let edge = |lambdas: &[[f32; KEY_POINTS]]| EdgeRelief {
+        rows,
+        first_cell: first_cell.clone(),
+        lambdas: lambdas.to_vec(),
+    };
+    let before = {
+        let lines = patch.centrelines(
+            pattern,
+            &offsets.clone().with_edge_relief(edge(&start)),
+            &sampling,
+        );
+        min_clearance(&lines)
+    };
+    if before >= TARGET {
+        return None;
+    }
+    let r0 = patch.middle.0;
+    let (best, _) = relax(
+        &patch,
+        pattern,
+        &sampling,
+        start,
+        before,
+        |course, wale| {
+            let first = *first_cell.get(wale)?;
+            ((r0..r0 + rows).contains(&course) && first != NO_CELL)
+                .then(|| first as usize + course % rows)
+        },
+        |lambdas| offsets.clone().with_edge_relief(edge(lambdas)),
+    );
+    best.map(|b| edge(&b))
+}
+
+/// The minimum clearance of `lines`, in diameters (unit yarn diameter).
+fn min_clearance(lines: &[Vec<Vec3>]) -> f32 {
+    clearance(
+        &polylines(lines),
+        1.0,
+        DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
+        3.0,
+    )
+    .min
+}
+
+/// Pushes yarns on `patch` apart (see the module documentation): the corrections in
+/// `start` (one per cell, in diameters), where `start_clearance` is the patch's clearance
+/// with them, move by the pushes on the key points that `cell_of(course, wale)` maps to a
+/// cell; `offsets_with(cells)` gives offsets holding a set of corrections. Returns the best
+/// corrections found and the clearance they reach, never ones that turn a crossing the
+/// wrong way round; `None` (and `start_clearance`) where nothing improved on the start.
+fn relax(
+    patch: &Patch,
+    pattern: &StitchPattern,
+    sampling: &SplineSampling,
+    start: Vec<[f32; KEY_POINTS]>,
+    start_clearance: f32,
+    cell_of: impl Fn(usize, usize) -> Option<usize>,
+    offsets_with: impl Fn(&[[f32; KEY_POINTS]]) -> NormalOffsets,
+) -> (Option<Vec<[f32; KEY_POINTS]>>, f32) {
+    let mut cells = start;
+    let mut best: (f32, Option<Vec<[f32; KEY_POINTS]>>) = (start_clearance, None);
     for _ in 0..ROUNDS {
-        let current = offsets.clone().with_relief(relief.clone());
-        let lines = patch.centrelines(pattern, &current, &sampling);
+        let current = offsets_with(&cells);
+        let lines = patch.centrelines(pattern, &current, sampling);
         let yarns = polylines(&lines);
         let Some(pairs) = close_pairs(&yarns, 1.0, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS, TARGET)
         else {
@@ -217,7 +400,7 @@ pub fn relieve(
         let found = pairs.iter().map(|p| p.distance).fold(TARGET, f32::min);
         // A relief that turns a crossing the wrong way round is never kept.
         if found > best.0 && patch.crosses_right(pattern, &lines) {
-            best = (found, Some(relief.clone()));
+            best = (found, Some(cells.clone()));
         }
         if pairs.is_empty() || found >= TARGET {
             break;
@@ -232,7 +415,7 @@ pub fn relieve(
             let piece = first.partition_point(|&f| f <= seg) - 1;
             (piece, seg - first[piece])
         };
-        let mut push = vec![[0.0f32; KEY_POINTS]; h * w];
+        let mut push = vec![[0.0f32; KEY_POINTS]; cells.len()];
         let mut add = |piece: usize, sample: usize, amount: f32| {
             let pc = &patch.pieces[piece];
             let t = pc.sample_t(sample, SAMPLES);
@@ -244,11 +427,9 @@ pub fn relieve(
                     continue;
                 }
                 let (course, wale) = (pc.course, pc.first_wale + kp / KEY_POINTS);
-                let (r0, c0) = patch.middle;
-                if !(r0..r0 + h).contains(&course) || !(c0..c0 + w).contains(&wale) {
-                    continue;
+                if let Some(cell) = cell_of(course, wale) {
+                    push[cell][kp % KEY_POINTS] += weight * amount;
                 }
-                push[(course % h) * w + wale % w][kp % KEY_POINTS] += weight * amount;
             }
         };
         for p in &pairs {
@@ -270,26 +451,16 @@ pub fn relieve(
                 add(piece, k + 1, s * sign * need);
             }
         }
-        for (cell, p) in relief.lambdas.iter_mut().zip(&push) {
+        for (cell, p) in cells.iter_mut().zip(&push) {
             for (x, d) in cell.iter_mut().zip(p) {
                 *x = (*x + (RATE * d).clamp(-STEP, STEP)).clamp(-LIMIT, LIMIT);
             }
         }
     }
-    let lines = patch.centrelines(
-        pattern,
-        &offsets.clone().with_relief(relief.clone()),
-        &sampling,
-    );
-    let last = clearance(
-        &polylines(&lines),
-        1.0,
-        DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
-        3.0,
-    )
-    .min;
+    let lines = patch.centrelines(pattern, &offsets_with(&cells), sampling);
+    let last = min_clearance(&lines);
     if last > best.0 && patch.crosses_right(pattern, &lines) {
-        best = (last, Some(relief));
+        best = (last, Some(cells));
     }
     (best.1, best.0)
 }

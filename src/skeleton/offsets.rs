@@ -19,7 +19,8 @@
 
 use std::sync::Arc;
 
-use super::contact::ContactRelief;
+use super::contact::{ContactRelief, EdgeRelief};
+use super::KEY_POINTS;
 use crate::pattern::Stitch;
 
 /// Signed normal-offset coefficients of the six key points, in scene units, each in
@@ -46,16 +47,20 @@ pub struct NormalOffsets {
     pub straight: Option<Arc<StraightWales>>,
 }
 
-/// The wales of a piece knitted straight, and the offsets they take: tuned for the pattern
-/// with every loop straight ([`crate::pattern::StitchPattern::straightened`]), with that
-/// pattern's own relief. The whole pattern's offsets and relief are made for loops that
-/// lean there.
+/// The wales of a piece knitted straight, and the offsets they take: the pattern's
+/// coefficients, with a relief made for the pattern with every loop straight
+/// ([`crate::pattern::StitchPattern::straightened`], [`super::tuning::straight_offsets`]).
+/// The pattern's own relief is made for loops that lean there.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StraightWales {
-    /// Offsets of the straightened pattern, in the same units as the offsets holding them.
+    /// Their offsets, in the same units as the offsets holding them.
     pub offsets: NormalOffsets,
     /// Per wale of the piece: whether it is knitted straight.
     pub wales: Vec<bool>,
+    /// Corrections made for the piece itself near those wales, where wales knitted straight
+    /// meet wales knitted as the pattern says ([`super::contact::relieve_edges`]): they
+    /// replace both reliefs there. `None`: not made (a piece in the round).
+    pub edge: Option<Arc<EdgeRelief>>,
 }
 
 /// The coefficients of [`NormalOffsets::shape`], each in yarn diameters.
@@ -112,19 +117,49 @@ impl NormalOffsets {
     /// These offsets, with `offsets` for the wales a piece knits straight (`wales[w]`).
     pub fn with_straight(self, offsets: NormalOffsets, wales: Vec<bool>) -> Self {
         Self {
-            straight: Some(Arc::new(StraightWales { offsets, wales })),
+            straight: Some(Arc::new(StraightWales {
+                offsets,
+                wales,
+                edge: None,
+            })),
             ..self
         }
     }
 
-    /// The offsets of wale `wale` of a piece, and whether its stitches take their relief:
-    /// the straightened pattern's for a wale knitted straight; otherwise these, relieved where
+    /// These offsets with `edge` corrections near the wales knitted straight (a no-op
+    /// without [`Self::straight`]).
+    pub fn with_edge_relief(self, edge: EdgeRelief) -> Self {
+        let straight = self.straight.as_ref().map(|s| {
+            Arc::new(StraightWales {
+                edge: Some(Arc::new(edge)),
+                ..(**s).clone()
+            })
+        });
+        Self { straight, ..self }
+    }
+
+    /// The offsets of stitch (`course`, `wale`) of a piece and its relief corrections (in
+    /// diameters): near wales knitted straight, the piece's own edge corrections; in such a
+    /// wale, the straightened pattern's offsets and relief; elsewhere these, relieved where
     /// `whole_group` (the loop's whole crossing is on the piece).
-    pub fn for_wale(&self, wale: usize, whole_group: bool) -> (&NormalOffsets, bool) {
-        match &self.straight {
-            Some(s) if s.wales.get(wale).copied().unwrap_or(false) => (&s.offsets, true),
-            _ => (self, whole_group),
+    pub fn for_stitch(
+        &self,
+        course: usize,
+        wale: usize,
+        whole_group: bool,
+    ) -> (&NormalOffsets, Option<[f32; KEY_POINTS]>) {
+        if let Some(s) = &self.straight {
+            let straight = s.wales.get(wale).copied().unwrap_or(false);
+            let base = if straight { &s.offsets } else { self };
+            if let Some(r) = s.edge.as_ref().and_then(|e| e.at(course, wale)) {
+                return (base, Some(r));
+            }
+            if straight {
+                return (base, base.relief.as_ref().map(|r| r.at(course, wale)));
+            }
         }
+        let relief = self.relief.as_ref().filter(|_| whole_group);
+        (self, relief.map(|r| r.at(course, wale)))
     }
 
     /// Rescaled from diameters to scene units (`k`: the yarn diameter).
@@ -138,6 +173,7 @@ impl NormalOffsets {
                 Arc::new(StraightWales {
                     offsets: s.offsets.clone().scaled(k),
                     wales: s.wales.clone(),
+                    edge: s.edge.clone(),
                 })
             }),
         }

@@ -90,8 +90,8 @@ pub fn group_on_fabric(
 
 /// Whether a piece knits every row of `wale` as the pattern says: false where its edge cuts
 /// a crossing or a decrease of some row in that wale ([`group_on_fabric`]). Such a wale is
-/// knitted as the pattern straightened ([`StitchPattern::straightened`]), with that pattern's
-/// offsets ([`NormalOffsets::for_wale`]) and regular rows
+/// knitted as the pattern straightened ([`StitchPattern::straightened`]), with a relief made
+/// for it ([`NormalOffsets::for_stitch`]) and regular rows
 /// ([`super::leaning_rows::fabric_row_heights`]).
 pub fn wale_knits_whole(lattice: &Lattice, pattern: &StitchPattern, wale: usize) -> bool {
     (0..pattern.height()).all(|r| group_on_fabric(lattice, pattern, r, wale))
@@ -129,9 +129,9 @@ pub fn stitch_key_points(
     let mut this = pattern.stitch(course, w);
     // A crossing or a decrease the fabric holds only part of is knitted straight: its loops
     // pass no other loop and take no corrections made for the whole of it. A wale knitted
-    // straight in some row takes the straightened pattern's offsets and relief.
+    // straight in some row takes the relief made for the pattern straightened.
     let whole_group = group_on_fabric(lattice, pattern, course, w);
-    let (offsets, relieved) = offsets.for_wale(w, whole_group);
+    let (offsets, relief) = offsets.for_stitch(course, w, whole_group);
     if !whole_group {
         this.land_offset = 0;
         this.land_layer = 0;
@@ -241,8 +241,8 @@ pub fn stitch_key_points(
         lambdas[2] += top;
         lambdas[4] -= top;
     }
-    if let (Some(relief), true) = (&offsets.relief, relieved) {
-        for (l, r) in lambdas.iter_mut().zip(relief.at(course, w)) {
+    if let Some(relief) = relief {
+        for (l, r) in lambdas.iter_mut().zip(relief) {
             *l += r * offsets.diameter;
         }
     }

@@ -80,6 +80,112 @@ pub fn tuned_offsets(
     diameter: f32,
     tension: f32,
 ) -> (NormalOffsets, f32, f32) {
+    let tuned = tuned(key(pattern, stitch_width, stitch_height, diameter, tension));
+    (
+        tuned.offsets.scaled(diameter),
+        tuned.clearance_min,
+        tuned.per_lean,
+    )
+}
+
+/// The offsets of the wales a piece knits straight because its edge cuts a crossing or a
+/// decrease there ([`super::StraightWales`]), in scene units: the pattern's tuned
+/// coefficients and shapes ([`tuned_offsets`], so they meet the wales beside them as the
+/// same yarn model), with the relief of the pattern straightened
+/// ([`StitchPattern::straightened`]) made on top of them, where the pattern's relief is made
+/// for loops that lean there. Cached like the tuning.
+pub fn straight_offsets(
+    pattern: &StitchPattern,
+    stitch_width: f32,
+    stitch_height: f32,
+    diameter: f32,
+    tension: f32,
+) -> NormalOffsets {
+    straight(key(pattern, stitch_width, stitch_height, diameter, tension)).scaled(diameter)
+}
+
+/// [`straight_offsets`] for `key`, in diameters.
+fn straight(key: Key) -> NormalOffsets {
+    static CACHE: OnceLock<Mutex<HashMap<Key, NormalOffsets>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(o) = cache.lock().ok().and_then(|c| c.get(&key).cloned()) {
+        return o;
+    }
+    let tuned = tuned(key.clone());
+    let base = NormalOffsets {
+        relief: None,
+        ..tuned.offsets
+    };
+    let (relief, _) = contact::relieve(
+        &key.pattern.straightened(),
+        key.width as f32 * Q_RATIO,
+        key.height as f32 * Q_RATIO,
+        key.tension as f32 * Q_TENSION,
+        tuned.per_lean,
+        &base,
+    );
+    let o = match relief {
+        Some(r) => base.with_relief(r),
+        None => base,
+    };
+    if let Ok(mut c) = cache.lock() {
+        c.insert(key, o.clone());
+    }
+    o
+}
+
+/// The offsets of a piece of `wales` wales across an open u whose edges cut crossings or
+/// decreases (`straight_wales[w]`: wale `w` is knitted straight), in scene units: the
+/// tuned offsets ([`tuned_offsets`]), the straightened pattern's relief in the wales knitted
+/// straight ([`straight_offsets`]) and corrections made for this piece where the two meet
+/// ([`contact::relieve_edges`]). Cached per pattern, quantised proportions and wale count.
+pub fn offsets_with_straight_wales(
+    pattern: &StitchPattern,
+    stitch_width: f32,
+    stitch_height: f32,
+    diameter: f32,
+    tension: f32,
+    straight_wales: Vec<bool>,
+) -> NormalOffsets {
+    type EdgeKey = (Key, Vec<bool>);
+    static CACHE: OnceLock<Mutex<HashMap<EdgeKey, NormalOffsets>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    let key = key(pattern, stitch_width, stitch_height, diameter, tension);
+    let edge_key = (key.clone(), straight_wales);
+    if let Some(o) = cache.lock().ok().and_then(|c| c.get(&edge_key).cloned()) {
+        return o.scaled(diameter);
+    }
+    let tuned = tuned(key.clone());
+    let offsets = tuned
+        .offsets
+        .clone()
+        .with_straight(straight(key.clone()), edge_key.1.clone());
+    let edge = contact::relieve_edges(
+        pattern,
+        &offsets,
+        (key.width as f32 * Q_RATIO, key.height as f32 * Q_RATIO),
+        key.tension as f32 * Q_TENSION,
+        tuned.per_lean,
+    );
+    let offsets = match edge {
+        Some(e) => offsets.with_edge_relief(e),
+        None => offsets,
+    };
+    if let Ok(mut c) = cache.lock() {
+        c.insert(edge_key, offsets.clone());
+    }
+    offsets.scaled(diameter)
+}
+
+/// The cache key: the pattern, and the stitch proportions (in diameters) and tension
+/// quantised.
+fn key(
+    pattern: &StitchPattern,
+    stitch_width: f32,
+    stitch_height: f32,
+    diameter: f32,
+    tension: f32,
+) -> Key {
     let key = Key {
         pattern: pattern.clone(),
         width: (stitch_width / diameter / Q_RATIO).round() as i64,
@@ -90,12 +196,17 @@ pub fn tuned_offsets(
         proportions(stitch_width, stitch_height, diameter),
         (key.width as f32 * Q_RATIO, key.height as f32 * Q_RATIO)
     );
+    key
+}
+
+/// The tuning for `key`, from the cache or tuned now (in diameters).
+fn tuned(key: Key) -> Tuned {
     let cached = cache().lock().ok().and_then(|c| c.get(&key).cloned());
-    let tuned = match cached {
+    match cached {
         Some(t) => t,
         None => {
             let t = tune(
-                pattern,
+                &key.pattern,
                 key.width as f32 * Q_RATIO,
                 key.height as f32 * Q_RATIO,
                 key.tension as f32 * Q_TENSION,
@@ -105,12 +216,7 @@ pub fn tuned_offsets(
             }
             t
         }
-    };
-    (
-        tuned.offsets.scaled(diameter),
-        tuned.clearance_min,
-        tuned.per_lean,
-    )
+    }
 }
 
 /// Clearance (min, p01) in diameters of `pattern` on a flat patch with unit yarn diameter.
