@@ -145,10 +145,16 @@ fn sphere_band() -> GridSurface {
 }
 
 fn measured(surface: &dyn Surface, pattern: &StitchPattern) -> (f32, CrossingOrder) {
+    measured_at(surface, pattern, KnitParams::default().kappa)
+}
+
+/// [`measured`] with irregularity `kappa`.
+fn measured_at(surface: &dyn Surface, pattern: &StitchPattern, kappa: f32) -> (f32, CrossingOrder) {
     // Default settings: the default gauge (20 stitches, 28 rows per 10 cm) and yarn.
     let p = KnitParams {
         threads: Some(2),
         measure_clearance: true,
+        kappa,
         ..KnitParams::default()
     };
     let knit = PreparedKnit::new(surface, pattern, &p).unwrap();
@@ -213,7 +219,38 @@ fn every_preset_crosses_as_its_pattern_says() {
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
-/// Stranded colourwork: a colour skipped between two of its stitches floats behind them.
+/// The add-on's default irregularity (kappa 0.005, `blender_addon/properties.py`): the
+/// perturbation of hand knitting narrows some stitches and skews others, and every preset
+/// still clears the target on the three surfaces (the tuning's margins: `TIGHT_QUANTILE`,
+/// the relief's `TARGET`, the tuning's `ENOUGH`).
+#[test]
+fn every_preset_clears_with_the_add_ons_irregularity() {
+    let plane = PlaneSurface {
+        width: 0.12,
+        height: 0.1,
+    };
+    let (cyl, sphere) = (cylinder(), sphere_band());
+    let mut failures = Vec::new();
+    for name in StitchPattern::presets() {
+        let pattern = StitchPattern::preset(name).unwrap();
+        let surfaces: [(&str, &dyn Surface); 3] =
+            [("sheet", &plane), ("cylinder", &cyl), ("sphere", &sphere)];
+        let mut line = format!("{name:20} kappa 0.005:");
+        for (surface, s) in surfaces {
+            let (c, _) = measured_at(s, &pattern, ADDON_KAPPA);
+            line += &format!(" {surface} {c:.3}");
+            if c < CLEARANCE_TARGET {
+                failures.push(format!("{name} on the {surface}: clearance {c:.3}"));
+            }
+        }
+        println!("{line}");
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// The add-on's default Irregularity.
+const ADDON_KAPPA: f32 = 0.005;
+
 /// Flat pieces whose width cuts the repeat of a cable, a decrease or a lace (the wales past
 /// the last whole repeat are knitted straight) clear the target too, on sheets of other
 /// sizes than the one above: 24 x 34 and 25 x 35 stitches at the default gauge. Before the
@@ -250,6 +287,7 @@ fn pieces_that_cut_a_repeat_clear_the_target() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// Stranded colourwork: a colour skipped between two of its stitches floats behind them.
 #[test]
 fn fair_isle_floats_run_behind_the_fabric_in_their_own_colour() {
     use knitwear::pattern::ColorPattern;
