@@ -125,3 +125,28 @@ def test_fair_isle_band_by_name_gives_floats_behind(api: ModuleType, core: Modul
     assert bpy.ops.object.knitwear_knit(
         **settings, color_mode="CHART", color_chart="fair_isle_band"
     ) == {"FINISHED"}
+
+
+@pytest.mark.parametrize("surface", ["nurbs", "uv_mesh"])
+def test_every_preset_clears_a_yarn_diameter_at_the_add_ons_defaults(
+    api: ModuleType, surface: str
+) -> None:
+    """Clearance (DESIGN.md section 7) of every preset knitted as a user knits it: the add-on's
+    defaults (gauge, yarn, irregularity, full detail) on Blender's NURBS patch and on a UV grid,
+    both scaled to 12 cm (24-25 stitches: most repeats are cut by the edge). Yarns keep at
+    least 0.95 diameters apart everywhere."""
+    import knitwear
+
+    make = nurbs_patch if surface == "nurbs" else grid_mesh
+    failures = []
+    for name in knitwear.Pattern.presets():
+        source = make()
+        source.scale = (0.12, 0.12, 0.12)
+        bpy.ops.object.transform_apply(scale=True)
+        result = api.knit_result(source, pattern=name, detail_mode="FULL")
+        clearance, _p01 = knitwear.measure_clearance(result)
+        print(f"{name:20} {surface}: clearance {clearance:.3f}")
+        if clearance < 0.95:
+            failures.append(f"{name} on the {surface}: {clearance:.3f}")
+        bpy.data.objects.remove(source)
+    assert not failures, failures
