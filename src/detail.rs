@@ -125,6 +125,18 @@ pub struct DetailParams {
     /// levels chosen when it was knitted, so every frame (and a farm machine that opens the
     /// file at any frame) rebuilds the same topology.
     pub pinned: Option<Vec<Level>>,
+    /// Cull the yarn hidden behind other yarn: keep only the triangles some view sees at a
+    /// sample of its image ([`crate::visibility`]), the frame widened by `frustum_margin`.
+    /// Default: false.
+    pub cull_hidden: bool,
+    /// Visibility samples per pixel side for `cull_hidden` (1..=16). Default: 4 (16 samples a
+    /// pixel, as a well anti-aliased render takes).
+    pub hidden_supersampling: u32,
+    /// The triangles seen, fixed in advance (with `cull_hidden`): one bit per triangle of the
+    /// knit before culling, triangle `i` at bit `i % 8` of byte `i / 8`, as
+    /// [`crate::knit::PreparedKnit::seen_triangles`] gives them. An animated knit pins the
+    /// set chosen when it was knitted, as it pins the levels.
+    pub pinned_seen: Option<Vec<u8>>,
 }
 
 impl Default for DetailParams {
@@ -140,6 +152,9 @@ impl Default for DetailParams {
             frustum_margin: 0.1,
             cull_back_faces: false,
             pinned: None,
+            cull_hidden: false,
+            hidden_supersampling: 4,
+            pinned_seen: None,
         }
     }
 }
@@ -199,6 +214,19 @@ impl DetailParams {
                 "frustum margin must be a finite fraction of the frame up to 100, not {}",
                 self.frustum_margin
             )));
+        }
+        if !(1..=16).contains(&self.hidden_supersampling) {
+            return Err(KnitError::Parameter(format!(
+                "hidden-yarn supersampling must be 1..=16 samples per pixel side, not {}",
+                self.hidden_supersampling
+            )));
+        }
+        if self.cull_hidden && self.views.is_empty() && self.pinned_seen.is_none() {
+            return Err(KnitError::Parameter(
+                "culling hidden yarn needs camera views or the pinned seen triangles of an \
+                 earlier knit"
+                    .into(),
+            ));
         }
         for (name, q) in [("mid", self.mid), ("far", self.far)] {
             if let Some(q) = q {

@@ -1,6 +1,7 @@
 //! The whole pipeline: surface -> lattice -> skeleton -> yarn bundles -> flat buffers in the
 //! dtypes Blender's `foreach_set` takes (float32 positions and colours, int32 indices).
 
+use std::sync::Mutex;
 use std::time::Instant;
 
 use glam::{Vec2, Vec3};
@@ -11,7 +12,7 @@ use crate::detail::{piece_spans, stitch_levels, DetailParams, Level, LevelSettin
 use crate::error::{KnitError, Result};
 use crate::geometry::{
     build_bundle, bundle_counts, piece_streams, stitch_seed, BundleCounts, BundleSettings,
-    EndTangents, FullDensityDraws, PieceBuffers, TopologyBuffers,
+    EndTangents, FullDensityDraws, MeshSubset, PieceBuffers, TopologyBuffers, VertexCorners,
 };
 use crate::lattice::{Lattice, ROW_OVERHANG};
 use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
@@ -23,6 +24,7 @@ use crate::skeleton::{
     SplineSampling, YarnPiece,
 };
 use crate::surface::{Surface, UvRect};
+use crate::visibility::seen_triangles;
 
 /// Gauge used when neither counts nor a gauge are given: 20 stitches and 28 rows per 10 cm
 /// (a worsted-weight yarn on 4.5 mm needles).
@@ -203,6 +205,9 @@ pub struct KnitStats {
     /// Triangles the same knit has with every stitch at full quality (equal to `triangles`
     /// without camera-driven detail).
     pub triangles_full_detail: usize,
+    /// Triangles culled as hidden behind other yarn from every view (`cull_hidden`; 0
+    /// without). `triangles` are those left.
+    pub triangles_hidden: usize,
 }
 
 /// A knit, in flat buffers.
@@ -226,6 +231,10 @@ pub struct KnitOutput {
     pub yarn_course: Vec<i32>,
     /// `(Y,)` whether each yarn piece is closed (a whole course round a cyclic-u surface).
     pub yarn_closed: Vec<bool>,
+    /// `(V, 3)` unit vertex normals of the knit with its hidden yarn culled: the whole
+    /// knit's smooth normals (Blender's: angle-weighted face normals), which the culled
+    /// mesh's own triangles no longer give. Empty without `cull_hidden`.
+    pub normals: Vec<f32>,
     pub yarn_radius: f32,
     pub stats: KnitStats,
 }
@@ -370,6 +379,77 @@ pub struct PreparedKnit {
     /// Everything but the per-build figures.
     stats: KnitStats,
     radius: f32,
+    /// With `cull_hidden`: the triangles kept, of the whole mesh the spans make.
+    hidden: Option<HiddenCulled>,
+    /// The whole build `cull_hidden` made from the views, kept for the first
+    /// [`build`](Self::build) of the same surface.
+    first_build: FirstBuild,
+}
+
+/// The seen triangles of a knit that culls its hidden yarn.
+#[derive(Debug, Clone)]
+struct HiddenCulled {
+    subset: MeshSubset,
+    /// The whole mesh's corners at each kept vertex, for its smooth normal.
+    corners: VertexCorners,
+    /// The whole mesh's triangles (its topology never changes).
+    whole_triangles: Vec<i32>,
+    /// One bit per triangle of the whole mesh (see [`DetailParams::pinned_seen`]).
+    seen: Vec<u8>,
+}
+
+/// A whole build and the centrelines it was swept along (cloning a knit does not clone it).
+#[derive(Default)]
+struct FirstBuild(Mutex<Option<(Centrelines, KnitOutput)>>);
+
+impl Clone for FirstBuild {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl std::fmt::Debug for FirstBuild {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("FirstBuild")
+    }
+}
+
+impl FirstBuild {
+    /// The kept build, if it was swept along exactly `c` (bit for bit: then it is what a new
+    /// sweep would make).
+    fn take_if_same(&self, c: &Centrelines) -> Option<KnitOutput> {
+        let mut slot = self.0.lock().ok()?;
+        let same = slot.as_ref().is_some_and(|(kept, _)| kept.same_as(c));
+        if same {
+            slot.take().map(|(_, out)| out)
+        } else {
+            None
+        }
+    }
+}
+
+/// Packs one flag per triangle into bits, triangle `i` at bit `i % 8` of byte `i / 8`.
+fn pack_bits(flags: &[bool]) -> Vec<u8> {
+    flags
+        .chunks(8)
+        .map(|c| {
+            c.iter()
+                .enumerate()
+                .fold(0u8, |b, (i, &f)| b | (u8::from(f) << i))
+        })
+        .collect()
+}
+
+fn unpack_bits(bits: &[u8], n: usize) -> Result<Vec<bool>> {
+    if bits.len() != n.div_ceil(8) {
+        return Err(KnitError::Parameter(format!(
+            "the pinned seen triangles are {} bytes; this knit has {n} triangles before \
+             culling ({} bytes): they are from another knit",
+            bits.len(),
+            n.div_ceil(8)
+        )));
+    }
+    Ok((0..n).map(|i| bits[i / 8] >> (i % 8) & 1 == 1).collect())
 }
 
 impl PreparedKnit {
@@ -611,7 +691,7 @@ impl PreparedKnit {
             triangles_full_detail,
             ..Default::default()
         };
-        Ok(Self {
+        let mut prepared = Self {
             params: p.clone(),
             pattern: pattern.clone(),
             lattice,
@@ -629,7 +709,77 @@ impl PreparedKnit {
             cyclic,
             stats,
             radius,
-        })
+            hidden: None,
+            first_build: FirstBuild::default(),
+        };
+        if let Some(d) = p.detail.as_ref().filter(|d| d.cull_hidden) {
+            prepared.cull_hidden(surface, d)?;
+        }
+        Ok(prepared)
+    }
+
+    /// Finds the triangles `d`'s views see on `surface` (or takes its pinned ones), so every
+    /// build keeps only those. The whole build made to look is kept for the first
+    /// [`build`](Self::build) of the same surface.
+    fn cull_hidden(&mut self, surface: &dyn Surface, d: &DetailParams) -> Result<()> {
+        let whole = self.total.triangles as usize;
+        let pinned = d
+            .pinned_seen
+            .as_ref()
+            .map(|bits| unpack_bits(bits, whole))
+            .transpose()?;
+        let (c, out, seen) = run_in_pool(self.params.threads, || {
+            let c = self.centrelines(surface);
+            let out = self.bundles(&c);
+            let seen = pinned.unwrap_or_else(|| {
+                seen_triangles(
+                    &out.positions,
+                    &out.triangles,
+                    &d.views,
+                    d.resolution,
+                    d.hidden_supersampling,
+                    d.frustum_margin,
+                )
+            });
+            (c, out, seen)
+        })?;
+        let subset = MeshSubset::new(
+            &seen,
+            &out.triangles,
+            &out.corner_edges,
+            self.total.vertices as usize,
+            self.total.edges as usize,
+        );
+        let bits = pack_bits(&seen);
+        self.stats.vertices = subset.vertex_count();
+        self.stats.triangles = subset.triangle_count();
+        self.stats.triangles_hidden = whole - subset.triangle_count();
+        self.stats.topology_key = bits.chunks(8).fold(self.stats.topology_key, |h, c| {
+            let mut word = [0u8; 8];
+            word[..c.len()].copy_from_slice(c);
+            crate::geometry::stitch_seed(h, u64::from_le_bytes(word) as usize, 0x5345_454e)
+        });
+        let corners =
+            VertexCorners::new(&out.triangles, subset.vertex_count(), subset.vertex_index());
+        self.hidden = Some(HiddenCulled {
+            subset,
+            corners,
+            whole_triangles: out.triangles.clone(),
+            seen: bits,
+        });
+        if d.pinned_seen.is_none() {
+            if let Ok(mut slot) = self.first_build.0.lock() {
+                *slot = Some((c, out));
+            }
+        }
+        Ok(())
+    }
+
+    /// With `cull_hidden`: the triangles seen, one bit per triangle of the knit before
+    /// culling (see [`DetailParams::pinned_seen`]); give them back as `pinned_seen` to
+    /// rebuild the same mesh in another pose or session.
+    pub fn seen_triangles(&self) -> Option<&[u8]> {
+        self.hidden.as_ref().map(|h| h.seen.as_slice())
     }
 
     /// Figures known before building (counts, sizes, topology key); `seconds` and
@@ -646,7 +796,9 @@ impl PreparedKnit {
     /// Vertices of every build: the length of [`positions_into`](Self::positions_into)'s
     /// buffer is three times this.
     pub fn vertex_count(&self) -> usize {
-        self.total.vertices as usize
+        self.hidden
+            .as_ref()
+            .map_or(self.total.vertices as usize, |h| h.subset.vertex_count())
     }
 
     fn check_layout(&self, surface: &dyn Surface) -> Result<()> {
@@ -685,7 +837,33 @@ impl PreparedKnit {
     /// `positions` (`3 * vertex_count()` floats): the same values [`build`](Self::build)
     /// writes, without allocating the rest. The per-frame path of an animated knit.
     pub fn positions_into(&self, surface: &dyn Surface, positions: &mut [f32]) -> Result<()> {
+        self.positions_and_normals_into(surface, positions, None)
+    }
+
+    /// [`positions_into`](Self::positions_into), and with `normals` (`3 * vertex_count()`
+    /// floats) the vertex normals [`build`](Self::build) gives a knit with its hidden yarn
+    /// culled (an error for any other knit: it gives none).
+    pub fn positions_and_normals_into(
+        &self,
+        surface: &dyn Surface,
+        positions: &mut [f32],
+        normals: Option<&mut [f32]>,
+    ) -> Result<()> {
         self.check_layout(surface)?;
+        if let Some(n) = &normals {
+            if self.hidden.is_none() {
+                return Err(KnitError::Parameter(
+                    "only a knit that culls its hidden yarn has normals of its own".into(),
+                ));
+            }
+            if n.len() != 3 * self.vertex_count() {
+                return Err(KnitError::Parameter(format!(
+                    "the normals buffer holds {} floats; this knit needs {}",
+                    n.len(),
+                    3 * self.vertex_count()
+                )));
+            }
+        }
         let nv = self.vertex_count();
         if positions.len() != 3 * nv {
             return Err(KnitError::Parameter(format!(
@@ -696,19 +874,34 @@ impl PreparedKnit {
         }
         run_in_pool(self.params.threads, || {
             let centrelines = self.centrelines(surface);
-            let pos = split_lengths(
-                positions,
-                &self
-                    .counts
-                    .iter()
-                    .map(|c| 3 * c.vertices)
-                    .collect::<Vec<_>>(),
-            );
-            pos.into_par_iter().enumerate().for_each(|(k, positions)| {
-                let mut bufs = PieceBuffers::positions_only(positions);
-                self.bundle_span(k, &centrelines, &mut bufs);
-            });
+            match &self.hidden {
+                None => self.whole_positions(&centrelines, positions),
+                Some(h) => {
+                    let mut whole = output_buffer::zeroed(3 * self.total.vertices as usize);
+                    self.whole_positions(&centrelines, &mut whole);
+                    h.subset.gather_positions(&whole, positions);
+                    if let Some(normals) = normals {
+                        h.corners.normals(&whole, &h.whole_triangles, normals);
+                    }
+                }
+            }
         })
+    }
+
+    /// Every span's vertex positions, before any culling of hidden yarn.
+    fn whole_positions(&self, centrelines: &Centrelines, positions: &mut [f32]) {
+        let pos = split_lengths(
+            positions,
+            &self
+                .counts
+                .iter()
+                .map(|c| 3 * c.vertices)
+                .collect::<Vec<_>>(),
+        );
+        pos.into_par_iter().enumerate().for_each(|(k, positions)| {
+            let mut bufs = PieceBuffers::positions_only(positions);
+            self.bundle_span(k, centrelines, &mut bufs);
+        });
     }
 
     /// Samples every piece's centreline (points, surface normals, owning stitch), in parallel.
@@ -927,6 +1120,35 @@ impl PreparedKnit {
     }
 
     fn build_in_pool(&self, surface: &dyn Surface) -> Result<KnitOutput> {
+        let centrelines = self.centrelines(surface);
+        let mut out = match self.first_build.take_if_same(&centrelines) {
+            Some(out) => out,
+            None => self.bundles(&centrelines),
+        };
+        if let Some(h) = &self.hidden {
+            let mut normals = output_buffer::zeroed(3 * h.subset.vertex_count());
+            h.corners
+                .normals(&out.positions, &out.triangles, &mut normals);
+            out.normals = normals;
+            let b = h.subset.apply(
+                &out.positions,
+                &out.colors,
+                &out.triangles,
+                &out.corner_edges,
+                &out.edges,
+            );
+            out.positions = b.positions;
+            out.colors = b.colors;
+            out.triangles = b.triangles;
+            out.corner_edges = b.corner_edges;
+            out.edges = b.edges;
+        }
+        out.stats.stitches_clamped = centrelines.clamped;
+        Ok(out)
+    }
+
+    /// The whole output swept along `centrelines`, before any culling of hidden yarn.
+    fn bundles(&self, centrelines: &Centrelines) -> KnitOutput {
         let nv = self.total.vertices as usize;
         let nt = self.total.triangles as usize;
         let ne = self.total.edges as usize;
@@ -938,8 +1160,6 @@ impl PreparedKnit {
             edges: output_buffer::zeroed(2 * ne),
             ..Default::default()
         };
-        let centrelines = self.centrelines(surface);
-
         let (mut vbase, mut ebase) = (
             Vec::with_capacity(self.pieces.len()),
             Vec::with_capacity(self.pieces.len()),
@@ -978,7 +1198,7 @@ impl PreparedKnit {
                             edge_verts,
                         }),
                     };
-                    self.bundle_span(i, &centrelines, &mut bufs);
+                    self.bundle_span(i, centrelines, &mut bufs);
                 },
             );
 
@@ -995,8 +1215,7 @@ impl PreparedKnit {
             .collect();
         out.yarn_course = self.pieces.iter().map(|pc| pc.course as i32).collect();
         out.yarn_closed = self.pieces.iter().map(|pc| pc.closed).collect();
-        out.stats.stitches_clamped = centrelines.clamped;
-        Ok(out)
+        out
     }
 }
 
@@ -1021,6 +1240,21 @@ struct Centrelines {
     owner: Vec<u32>,
     /// Stitches whose offsets were clamped for curvature.
     clamped: usize,
+}
+
+impl Centrelines {
+    /// Bit for bit the same samples (so the same sweep).
+    fn same_as(&self, other: &Centrelines) -> bool {
+        let same = |a: &[Vec3], b: &[Vec3]| {
+            a.len() == b.len()
+                && a.iter()
+                    .zip(b)
+                    .all(|(p, q)| p.to_array().map(f32::to_bits) == q.to_array().map(f32::to_bits))
+        };
+        self.owner == other.owner
+            && same(&self.points, &other.points)
+            && same(&self.normals, &other.normals)
+    }
 }
 
 /// Clearance (min, p01) of a finished knit, in yarn diameters.

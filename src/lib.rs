@@ -36,6 +36,7 @@ pub mod skeleton;
 pub mod surface;
 pub mod texture;
 pub mod tight_stitches;
+pub mod visibility;
 
 #[cfg(feature = "python")]
 mod python;

@@ -10,18 +10,11 @@ use knitwear::pattern::StitchPattern;
 use knitwear::surface::{GridSurface, PlaneSurface, Surface};
 use knitwear::KnitError;
 
-const RES: (u32, u32) = (1920, 1080);
+mod common;
 
-/// OpenGL perspective projection (right-handed, looking down -z).
-fn perspective(fov_y: f32, aspect: f32, near: f32, far: f32) -> Mat4 {
-    let f = 1.0 / (0.5 * fov_y).tan();
-    Mat4::from_cols(
-        Vec4::new(f / aspect, 0.0, 0.0, 0.0),
-        Vec4::new(0.0, f, 0.0, 0.0),
-        Vec4::new(0.0, 0.0, (far + near) / (near - far), -1.0),
-        Vec4::new(0.0, 0.0, 2.0 * far * near / (near - far), 0.0),
-    )
-}
+use common::cameras::{look_at, perspective};
+
+const RES: (u32, u32) = (1920, 1080);
 
 /// OpenGL orthographic projection of the box `[l, r] x [b, t] x [-far, -near]`.
 fn orthographic(l: f32, r: f32, b: f32, t: f32, near: f32, far: f32) -> Mat4 {
@@ -35,19 +28,6 @@ fn orthographic(l: f32, r: f32, b: f32, t: f32, near: f32, far: f32) -> Mat4 {
             -(far + near) / (far - near),
             1.0,
         ),
-    )
-}
-
-/// View matrix (camera from world) of an eye looking at `target`, `up` upwards.
-fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
-    let f = (target - eye).normalize();
-    let s = f.cross(up).normalize();
-    let u = s.cross(f);
-    Mat4::from_cols(
-        Vec4::new(s.x, u.x, -f.x, 0.0),
-        Vec4::new(s.y, u.y, -f.y, 0.0),
-        Vec4::new(s.z, u.z, -f.z, 0.0),
-        Vec4::new(-s.dot(eye), -u.dot(eye), f.dot(eye), 1.0),
     )
 }
 
@@ -74,10 +54,15 @@ fn receding() -> CameraView {
     view(Vec3::new(0.05, -0.08, 0.06), Vec3::new(0.05, 0.25, 0.0))
 }
 
+/// Detail for `views` at thresholds of 24 / 10 / 2 pixels (coarser than the defaults), so
+/// this strip at this resolution gets every built level.
 fn detail(views: Vec<CameraView>) -> DetailParams {
     DetailParams {
         views,
         resolution: RES,
+        full_px: 24.0,
+        mid_px: 10.0,
+        texture_px: 2.0,
         ..Default::default()
     }
 }

@@ -51,7 +51,8 @@ def knit(surface: GridSurface | MeshSurface, pattern: Pattern, **settings: Any) 
     ``tension``, ``kappa``, ``seed``, ``colors``, ``color_image``, ``color_variation``,
     ``threads``, ``budget_bytes``, ``measure_clearance``, and camera-driven detail:
     ``camera`` (a `Camera`), ``detail_px``, ``mid_quality``, ``far_quality``,
-    ``frustum_margin``, ``cull_back_faces``. ``stats["seconds"]`` is the build's.
+    ``frustum_margin``, ``cull_back_faces``, ``cull_hidden``, ``hidden_supersampling``,
+    ``seen_triangles``. ``stats["seconds"]`` is the build's.
     """
     return Knit(surface, pattern, **settings).build(surface)
 

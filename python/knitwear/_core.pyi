@@ -122,6 +122,7 @@ class KnitResult:
     yarn_course: npt.NDArray[np.int32]  # (Y,), the course (row) each yarn piece belongs to
     yarn_closed: npt.NDArray[np.bool_]  # (Y,), whether each piece closes on itself
     yarn_radius: float
+    normals: npt.NDArray[np.float32] | None  # (V, 3) with cull_hidden: the whole knit's
     stats: dict[str, Any]
 
 class Knit:
@@ -158,6 +159,9 @@ class Knit:
         far_quality: tuple[int, int, bool] | None = None,
         frustum_margin: float = 0.1,
         cull_back_faces: bool = False,
+        cull_hidden: bool = False,
+        hidden_supersampling: int = 4,
+        seen_triangles: bytes | None = None,
     ) -> None: ...
     def build(self, surface: GridSurface | MeshSurface) -> KnitResult:
         """The whole result for `surface` (the one knitted, or it deformed)."""
@@ -171,6 +175,13 @@ class Knit:
     ) -> npt.NDArray[np.float32]:
         """(V, 3) float32 positions for `surface` in a new pose, bit-identical to
         `build(surface).vertices`; written into `out` when given."""
+    def normals(
+        self,
+        surface: GridSurface | MeshSurface,
+        out: npt.NDArray[np.float32] | None = None,
+    ) -> npt.NDArray[np.float32]:
+        """(V, 3) float32 vertex normals of a knit that culls its hidden yarn, for `surface`
+        in a new pose: bit-identical to `build(surface).normals`."""
     @property
     def vertex_count(self) -> int: ...
     @property
@@ -183,6 +194,10 @@ class Knit:
         """(width, height) of a stitch the loop shapes are tuned for, scene units."""
     @property
     def topology_key(self) -> int: ...
+    @property
+    def seen_triangles(self) -> bytes | None:
+        """With ``cull_hidden``: one bit per triangle before culling (triangle i at bit i % 8
+        of byte i // 8), whether it is kept; pass back as ``seen_triangles``."""
     @property
     def stitch_levels(self) -> npt.NDArray[np.uint8] | None:
         """With a camera, (courses, wales): 0 full, 1 mid, 2 far, 3 texture, 4 culled (or no

@@ -2,9 +2,13 @@
 
 mod bundle;
 mod frames;
+mod subset;
+mod vertex_normals;
 
 pub use bundle::{
     build_bundle, bundle_counts, piece_streams, stitch_seed, BundleCounts, BundleSettings,
     EndTangents, FullDensityDraws, PieceBuffers, TopologyBuffers,
 };
 pub use frames::{frame_from_tangent, ring_frame};
+pub use subset::{MeshSubset, SubsetBuffers};
+pub use vertex_normals::VertexCorners;

@@ -139,9 +139,18 @@ pub(super) fn detail_from(
     far_quality: Option<(i64, i64, bool)>,
     frustum_margin: f32,
     cull_back_faces: bool,
+    cull_hidden: bool,
+    hidden_supersampling: u32,
+    seen_triangles: Option<Vec<u8>>,
 ) -> PyResult<Option<DetailParams>> {
     let pinned = stitch_levels.map(pinned_levels).transpose()?;
     let (views, resolution) = match (camera, &pinned) {
+        (None, None) if cull_hidden || seen_triangles.is_some() => {
+            return Err(ParameterError::new_err(
+                "culling hidden yarn needs a camera (or the pinned stitch_levels and \
+                 seen_triangles of an earlier knit)",
+            ))
+        }
         (None, None) => return Ok(None),
         (Some(_), Some(_)) => {
             return Err(ParameterError::new_err(
@@ -165,6 +174,9 @@ pub(super) fn detail_from(
         far: quality("far_quality", far_quality)?,
         frustum_margin,
         cull_back_faces,
+        cull_hidden: cull_hidden || seen_triangles.is_some(),
+        hidden_supersampling,
+        pinned_seen: seen_triangles,
     }))
 }
 

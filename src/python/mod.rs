@@ -449,6 +449,10 @@ pub struct PyKnitResult {
     yarn_closed: Py<PyAny>,
     #[pyo3(get)]
     yarn_radius: f32,
+    /// `(V, 3)` vertex normals of a knit that culls its hidden yarn (the whole knit's smooth
+    /// normals), else None.
+    #[pyo3(get)]
+    normals: Option<Py<PyAny>>,
     #[pyo3(get)]
     stats: Py<PyDict>,
 }
@@ -502,8 +506,15 @@ fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResult> {
     }
     stats.set_item("levels", levels)?;
     stats.set_item("triangles_full_detail", s.triangles_full_detail)?;
+    stats.set_item("triangles_hidden", s.triangles_hidden)?;
     let yarn_radius = out.yarn_radius;
+    let normals = if out.normals.is_empty() {
+        None
+    } else {
+        Some(rows(py, out.normals, 3)?)
+    };
     Ok(PyKnitResult {
+        normals,
         vertices: rows(py, out.positions, 3)?,
         triangles: rows(py, out.triangles, 3)?,
         edges: rows(py, out.edges, 2)?,
@@ -645,7 +656,8 @@ impl PyKnit {
         stitch_size=None, fluffiness=0.5, ring_segments=6, samples_per_loop=16, tension=0.0,
         kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
         budget_bytes=None, measure_clearance=false, camera=None, stitch_levels=None, detail_px=None,
-        mid_quality=None, far_quality=None, frustum_margin=0.1, cull_back_faces=false
+        mid_quality=None, far_quality=None, frustum_margin=0.1, cull_back_faces=false,
+        cull_hidden=false, hidden_supersampling=4, seen_triangles=None
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -676,6 +688,9 @@ impl PyKnit {
         far_quality: Option<(i64, i64, bool)>,
         frustum_margin: f32,
         cull_back_faces: bool,
+        cull_hidden: bool,
+        hidden_supersampling: u32,
+        seen_triangles: Option<Vec<u8>>,
     ) -> PyResult<Self> {
         let surf = AnySurface::from_py(surface)?;
         let mut params = params_from(
@@ -705,6 +720,9 @@ impl PyKnit {
             far_quality,
             frustum_margin,
             cull_back_faces,
+            cull_hidden,
+            hidden_supersampling,
+            seen_triangles,
         )?;
         let pattern = pattern.get().inner.clone();
         let inner = guarded(py, move || {
@@ -782,6 +800,38 @@ impl PyKnit {
         }
     }
 
+    /// `(V, 3)` float32 vertex normals for `surface` in a new pose, bit-identical to
+    /// `build(surface).normals`, of a knit that culls its hidden yarn (a `ParameterError` for
+    /// another: its mesh's own normals are right). With `out`, written there.
+    #[pyo3(signature = (surface, out=None))]
+    fn normals(
+        &self,
+        py: Python<'_>,
+        surface: &Bound<'_, PyAny>,
+        out: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        let surf = AnySurface::from_py(surface)?;
+        let knit = self.inner.clone();
+        let nv = knit.vertex_count();
+        let mut normals = crate::output_buffer::zeroed::<f32>(3 * nv);
+        let normals = guarded(py, move || {
+            let mut positions = crate::output_buffer::zeroed::<f32>(3 * nv);
+            knit.positions_and_normals_into(surf.as_dyn(), &mut positions, Some(&mut normals))
+                .map(|_| normals)
+        })?;
+        match out {
+            None => rows(py, normals, 3),
+            Some(obj) => {
+                let np = py.import("numpy")?;
+                let src = rows(py, normals, 3)?;
+                np.call_method1("copyto", (obj, src)).map_err(|e| {
+                    ParameterError::new_err(format!("out must be a float32 array ({nv}, 3): {e}"))
+                })?;
+                Ok(obj.clone().unbind())
+            }
+        }
+    }
+
     /// Vertices of every build.
     #[getter]
     fn vertex_count(&self) -> usize {
@@ -812,6 +862,17 @@ impl PyKnit {
     #[getter]
     fn topology_key(&self) -> u64 {
         self.inner.stats().topology_key
+    }
+
+    /// With `cull_hidden`: the triangles seen, as `bytes`, one bit per triangle of the knit
+    /// before culling (triangle `i` at bit `i % 8` of byte `i / 8`). Pass them back as
+    /// `seen_triangles` (with `stitch_levels`) to rebuild the same mesh without the camera.
+    /// None without.
+    #[getter]
+    fn seen_triangles<'py>(&self, py: Python<'py>) -> Option<Bound<'py, pyo3::types::PyBytes>> {
+        self.inner
+            .seen_triangles()
+            .map(|b| pyo3::types::PyBytes::new(py, b))
     }
 
     /// With a camera: `(courses, wales)` uint8, each stitch's level (0 full, 1 mid, 2 far,

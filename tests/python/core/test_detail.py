@@ -63,7 +63,10 @@ def test_without_a_camera_the_knit_is_unchanged_and_all_full() -> None:
 def test_a_camera_sets_levels_and_saves_triangles() -> None:
     cam = receding_camera()
     assert cam.views == 1 and cam.resolution == RES
-    knit = knitwear.Knit(strip(), knitwear.Pattern.preset("stockinette"), camera=cam)
+    # Thresholds twice the defaults, so this strip at 1080p gets every built level.
+    knit = knitwear.Knit(
+        strip(), knitwear.Pattern.preset("stockinette"), camera=cam, detail_px=(24, 10, 2)
+    )
     result = knit.build(strip())
     s = result.stats
     assert sum(s["levels"].values()) == s["stitches"]
@@ -121,3 +124,45 @@ def test_bad_cameras_and_pinned_levels_raise() -> None:
         knitwear.Knit(strip(), knitwear.Pattern.preset("garter"), stitch_levels=[0, 1, 2])
     with pytest.raises(knitwear.ParameterError, match="0 \\(full\\) to 4"):
         knitwear.Knit(strip(), knitwear.Pattern.preset("garter"), stitch_levels=[7])
+
+
+def test_hidden_yarn_is_culled_with_the_whole_knits_normals_and_can_be_pinned() -> None:
+    pattern = knitwear.Pattern.preset("stockinette")
+    cam = receding_camera()
+    whole = knitwear.knit(strip(), pattern, camera=cam, seed=3)
+    assert whole.normals is None and whole.stats["triangles_hidden"] == 0
+    knit = knitwear.Knit(strip(), pattern, camera=cam, seed=3, cull_hidden=True)
+    result = knit.build(strip())
+    s = result.stats
+    assert s["triangles"] + s["triangles_hidden"] == whole.stats["triangles"]
+    # At 16 samples a pixel of a 1080p frame much of the yarn shows; the loops behind the
+    # fabric and the backs of the strands do not.
+    assert s["triangles_hidden"] > 0.3 * whole.stats["triangles"]
+    assert len(result.triangles) == s["triangles"] and len(result.vertices) == knit.vertex_count
+    assert result.normals.shape == result.vertices.shape
+    np.testing.assert_allclose(np.linalg.norm(result.normals, axis=1), 1.0, atol=1e-5)
+    seen = knit.seen_triangles
+    assert isinstance(seen, bytes) and len(seen) == -(-whole.stats["triangles"] // 8)
+    bits = np.unpackbits(np.frombuffer(seen, np.uint8), bitorder="little")
+    assert bits.sum() == s["triangles"]
+    # The culled triangles are the whole knit's seen ones, corner for corner.
+    kept = np.flatnonzero(bits[: whole.stats["triangles"]])
+    np.testing.assert_array_equal(
+        result.vertices[result.triangles], whole.vertices[whole.triangles[kept]]
+    )
+    # Pinned, without the camera: the same mesh, in another pose too.
+    again = knitwear.Knit(
+        strip(), pattern, seed=3, stitch_levels=knit.stitch_levels, seen_triangles=seen
+    )
+    assert again.topology_key == knit.topology_key
+    np.testing.assert_array_equal(again.build(strip()).vertices, result.vertices)
+    np.testing.assert_array_equal(again.normals(strip()), result.normals)
+    out = np.empty_like(result.normals)
+    assert again.normals(strip(), out=out) is out
+    np.testing.assert_array_equal(out, result.normals)
+    with pytest.raises(knitwear.ParameterError, match="needs a camera"):
+        knitwear.Knit(strip(), pattern, cull_hidden=True)
+    with pytest.raises(knitwear.ParameterError, match="another knit"):
+        knitwear.Knit(strip(), pattern, camera=cam, seen_triangles=seen[:-1])
+    with pytest.raises(knitwear.ParameterError, match="culls its hidden yarn"):
+        knitwear.Knit(strip(), pattern, camera=cam).normals(strip())
