@@ -41,6 +41,10 @@ _GAUGE_LENGTH = 0.1
 #: it was knitted with auto detail, pinned so every frame rebuilds the same topology.
 LEVELS_PROPERTY = "knitwear_stitch_levels"
 
+#: Custom property of a knit object knitted with Cull Hidden Yarn: the triangles the camera
+#: saw (one bit per triangle before culling), pinned as the levels are.
+SEEN_PROPERTY = "knitwear_seen_triangles"
+
 #: An animated camera is sampled at most at this many frames of the scene's frame range.
 MAX_CAMERA_FRAMES = 25
 
@@ -71,6 +75,9 @@ class KnitOutcome:
     levels: dict[str, int]
     #: Triangles the knit would have with every stitch at full quality.
     triangles_full_detail: int
+    #: Triangles culled as hidden behind other yarn (Cull Hidden Yarn), of those its levels
+    #: make.
+    triangles_hidden: int
     #: Whether auto detail applied (Detail is Auto and the scene has a camera).
     auto_detail: bool
     #: The material of the knitwear texture the source now wears, where stitches were left
@@ -242,6 +249,9 @@ class Bound:
     #: Each stitch's detail level (one byte per stitch, row-major) with auto detail, else
     #: None.
     levels: bytes | None = None
+    #: The triangles seen (one bit per triangle before culling) with Cull Hidden Yarn, else
+    #: None.
+    seen: bytes | None = None
 
 
 @dataclass(frozen=True)
@@ -384,6 +394,9 @@ def detail_settings(
     cull_back = bool(settings["cull_back_faces"]) and _is_closed(
         source, context.evaluated_depsgraph_get()
     )
+    # The seen yarn is found for the source's pose now: a source that animates (and may
+    # deform) would show what was culled, so only a still source culls its hidden yarn.
+    cull_hidden = bool(settings["cull_hidden"]) and not _animated(source)
     return {
         "camera": camera_views,
         "detail_px": (
@@ -393,6 +406,8 @@ def detail_settings(
         ),
         "frustum_margin": float(settings["frustum_margin"]),
         "cull_back_faces": cull_back,
+        "cull_hidden": cull_hidden,
+        "hidden_supersampling": int(settings["cull_hidden_samples"]),
     }
 
 
@@ -422,6 +437,7 @@ def _run_core(
         knit.stitch_size,
         min_samples or (0, 0),
         None if levels is None else levels.tobytes(),
+        knit.seen_triangles,
     )
     if progress:
         progress(0.8)
@@ -443,6 +459,10 @@ def _store(
         obj.pop(LEVELS_PROPERTY, None)
     else:
         obj[LEVELS_PROPERTY] = bound.levels
+    if bound.seen is None:
+        obj.pop(SEEN_PROPERTY, None)
+    else:
+        obj[SEEN_PROPERTY] = bound.seen
     stored.is_knit = True
 
 
@@ -490,6 +510,7 @@ def _outcome(
         mesh_seconds=mesh_s,
         levels={name: int(stats["levels"][name]) for name in LEVEL_NAMES},
         triangles_full_detail=int(stats["triangles_full_detail"]),
+        triangles_hidden=int(stats["triangles_hidden"]),
         auto_detail=bound.levels is not None,
         texture_material=texture_material,
     )
@@ -577,12 +598,14 @@ def bound_of(obj: bpy.types.Object) -> Bound:
     """The values knit object ``obj`` pinned when it was knitted or last updated."""
     stored = obj.knitwear
     levels = obj.get(LEVELS_PROPERTY)
+    seen = obj.get(SEEN_PROPERTY)
     return Bound(
         tuple(stored.bound_counts),
         stored.bound_yarn_radius,
         tuple(stored.bound_stitch_size),
         tuple(stored.bound_samples),
         None if levels is None else bytes(levels),
+        None if seen is None else bytes(seen),
     )
 
 
@@ -605,6 +628,9 @@ def bind(
     if bound.levels is not None:
         # The levels auto detail chose at knit time, whatever the camera does now.
         kwargs["stitch_levels"] = np.frombuffer(bound.levels, dtype=np.uint8)
+    if bound.seen is not None:
+        # And the yarn it saw.
+        kwargs["seen_triangles"] = bound.seen
     return knitwear.Knit(sampled.surface, _pattern(settings), **kwargs)
 
 

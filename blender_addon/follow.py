@@ -84,6 +84,9 @@ def follow(
     sampled = api.sample_source(obj, context, depsgraph)
     follower = _follower(obj, sampled, context.scene)
     follower.knit.positions(sampled.surface, out=follower.positions)
+    if follower.knit.seen_triangles is not None:
+        # Culled hidden yarn shades with the whole knit's normals, which move with it.
+        mesh_build.write_normals(obj.data, follower.knit.normals(sampled.surface))
     mesh_build.write_positions(obj.data, follower.positions)
     if obj.matrix_world != sampled.matrix:
         obj.matrix_world = sampled.matrix

@@ -111,6 +111,26 @@ def _set_colors(mesh: bpy.types.Mesh, colors: np.ndarray) -> None:
     mesh.attributes.default_color_name = attribute.name
 
 
+#: Blender's free custom normals: a float vector per vertex that shading uses instead of the
+#: normals the mesh's own triangles give.
+NORMAL_ATTRIBUTE = "custom_normal"
+
+
+def write_normals(mesh: bpy.types.Mesh, normals: np.ndarray | None) -> None:
+    """Give ``mesh`` the knit's own vertex normals (a knit with its hidden yarn culled
+    shades as the whole knit, whose triangles it no longer has), or none (``None``)."""
+    attribute = mesh.attributes.get(NORMAL_ATTRIBUTE)
+    if normals is None:
+        if attribute is not None:
+            mesh.attributes.remove(attribute)
+        return
+    if attribute is None or attribute.data_type != "FLOAT_VECTOR" or attribute.domain != "POINT":
+        if attribute is not None:
+            mesh.attributes.remove(attribute)
+        attribute = mesh.attributes.new(NORMAL_ATTRIBUTE, "FLOAT_VECTOR", "POINT")
+    attribute.data.foreach_set("vector", _f32(normals))
+
+
 def _topology_key(result: object) -> str:
     return format(int(result.stats["topology_key"]), "016x")
 
@@ -134,6 +154,7 @@ def _build(name: str, result: object) -> bpy.types.Mesh:
     try:
         _set_colors(mesh, result.colors)
         mesh.shade_smooth()
+        write_normals(mesh, result.normals)
         mesh[TOPOLOGY_PROPERTY] = _topology_key(result)
     except BaseException:
         bpy.data.meshes.remove(mesh)
@@ -159,6 +180,7 @@ def fill_mesh(mesh: bpy.types.Mesh, result: object) -> bpy.types.Mesh:
     """
     if _same_topology(mesh, result):
         _set_colors(mesh, result.colors)
+        write_normals(mesh, result.normals)
         write_positions(mesh, result.vertices)
         return mesh
     name = mesh.name

@@ -43,7 +43,12 @@ def _summary(outcome: api.KnitOutcome) -> str:
         notes.append(
             f"auto detail: {lv['full']:,} full, {lv['mid']:,} reduced, {lv['far']:,} plain, "
             f"{lv['texture']:,} texture, {lv['culled']:,} unseen stitches; {saved:,} "
-            f"triangles fewer than full detail ({outcome.triangles_full_detail:,})"
+            f"triangles fewer than full detail ({outcome.triangles_full_detail:,}"
+            + (
+                f", of them {outcome.triangles_hidden:,} hidden behind other yarn)"
+                if outcome.triangles_hidden
+                else ")"
+            )
         )
         if outcome.texture_material:
             notes.append(f"the source wears '{outcome.texture_material}' for the texture")

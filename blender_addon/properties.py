@@ -387,6 +387,25 @@ class KnitSettingsMixin:
         "camera in every frame (the front hides them)",
         default=True,
     )
+    cull_hidden: BoolProperty(
+        name="Cull Hidden Yarn",
+        description="Do not build the yarn that other yarn hides from the camera in every "
+        "sampled frame (most of a knit's triangles: the back of each strand, the loops "
+        "behind the fabric). Applies while the source does not animate; a moving camera "
+        "is followed over the frame range",
+        default=True,
+    )
+    cull_hidden_samples: IntProperty(
+        name="Visibility Samples",
+        description="Samples per pixel side at which Cull Hidden Yarn looks for the yarn the "
+        "camera sees (2: 4 samples a pixel, as an anti-aliased render spreads its own; odd "
+        "counts include the pixel centres a one-sample render looks at). More keeps the "
+        "slivers between nearer strands, at more triangles and time",
+        default=2,
+        min=1,
+        max=16,
+    )
+
 
 
 def _poll_source(_self: bpy.types.PropertyGroup, obj: bpy.types.Object) -> bool:

@@ -69,6 +69,10 @@ def _detail(layout: bpy.types.UILayout, settings: bpy.types.AnyType) -> None:
     col.prop(settings, "detail_texture_px")
     layout.prop(settings, "frustum_margin")
     layout.prop(settings, "cull_back_faces")
+    layout.prop(settings, "cull_hidden")
+    sub = layout.row()
+    sub.active = settings.cull_hidden
+    sub.prop(settings, "cull_hidden_samples")
 
 
 _SECTIONS = (

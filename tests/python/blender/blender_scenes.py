@@ -4,6 +4,7 @@ from typing import Any
 
 import bpy
 import numpy as np
+from mathutils import Vector
 
 #: The add-on's module name once installed into the "user_default" extension repository.
 ADDON_MODULE = "bl_ext.user_default.knitwear"
@@ -115,3 +116,44 @@ def corner_verts(mesh: bpy.types.Mesh) -> np.ndarray:
 def colors(mesh: bpy.types.Mesh, name: str = "Col") -> np.ndarray:
     attribute = mesh.color_attributes[name]
     return _array(attribute.data, "color", 4).reshape(-1, 4)
+
+
+# Camera-driven detail: a strip receding from a low camera.
+
+#: A 10 x 60 cm strip at about the default gauge: 20 wales x 160 courses.
+STRIP = {"size_mode": "COUNTS", "courses": 160, "wales": 20}
+
+
+def strip() -> bpy.types.Object:
+    """A UV-mapped plane scaled to a 10 x 60 cm strip along y, centred on the origin."""
+    bpy.ops.mesh.primitive_plane_add(size=1.0)
+    obj = bpy.context.active_object
+    obj.scale = (0.1, 0.6, 1.0)
+    bpy.context.view_layer.update()
+    return obj
+
+
+def camera(location: tuple, target: tuple) -> bpy.types.Object:
+    """The scene camera (a 20 mm lens) at ``location`` looking at ``target``, rendering
+    1920 x 1080."""
+    data = bpy.data.cameras.new("Camera")
+    data.lens = 20.0
+    cam = bpy.data.objects.new("Camera", data)
+    bpy.context.scene.collection.objects.link(cam)
+    aim(cam, location, target)
+    scene = bpy.context.scene
+    scene.camera = cam
+    scene.render.resolution_x, scene.render.resolution_y = 1920, 1080
+    scene.render.resolution_percentage = 100
+    return cam
+
+
+def aim(cam: bpy.types.Object, location: tuple, target: tuple) -> None:
+    cam.location = location
+    cam.rotation_euler = (Vector(target) - Vector(location)).to_track_quat("-Z", "Y").to_euler()
+    bpy.context.view_layer.update()
+
+
+def receding_camera() -> bpy.types.Object:
+    """Low over the strip's near end, looking along it."""
+    return camera((0.0, -0.38, 0.06), (0.0, -0.05, 0.0))

@@ -7,46 +7,10 @@ from types import ModuleType
 
 import bpy
 import numpy as np
-from blender_scenes import positions
-from mathutils import Vector
+from blender_scenes import STRIP, aim, camera, positions, receding_camera, strip
 
-#: A 10 x 60 cm strip at about the default gauge: 20 wales x 160 courses.
-STRIP = {"size_mode": "COUNTS", "courses": 160, "wales": 20}
-
-
-def strip() -> bpy.types.Object:
-    """A UV-mapped plane scaled to a 10 x 60 cm strip along y, centred on the origin."""
-    bpy.ops.mesh.primitive_plane_add(size=1.0)
-    obj = bpy.context.active_object
-    obj.scale = (0.1, 0.6, 1.0)
-    bpy.context.view_layer.update()
-    return obj
-
-
-def camera(location: tuple, target: tuple) -> bpy.types.Object:
-    """The scene camera (a 20 mm lens) at ``location`` looking at ``target``, rendering
-    1920 x 1080."""
-    data = bpy.data.cameras.new("Camera")
-    data.lens = 20.0
-    cam = bpy.data.objects.new("Camera", data)
-    bpy.context.scene.collection.objects.link(cam)
-    aim(cam, location, target)
-    scene = bpy.context.scene
-    scene.camera = cam
-    scene.render.resolution_x, scene.render.resolution_y = 1920, 1080
-    scene.render.resolution_percentage = 100
-    return cam
-
-
-def aim(cam: bpy.types.Object, location: tuple, target: tuple) -> None:
-    cam.location = location
-    cam.rotation_euler = (Vector(target) - Vector(location)).to_track_quat("-Z", "Y").to_euler()
-    bpy.context.view_layer.update()
-
-
-def receding_camera() -> bpy.types.Object:
-    """Low over the strip's near end, looking along it."""
-    return camera((0.0, -0.38, 0.06), (0.0, -0.05, 0.0))
+#: Thresholds twice the defaults', so this strip at 1080p gets every built level.
+COARSE = {"detail_full_px": 24.0, "detail_mid_px": 10.0, "detail_texture_px": 2.0}
 
 
 def test_without_a_camera_the_knit_is_full_detail(api: ModuleType) -> None:
@@ -62,7 +26,7 @@ def test_auto_detail_follows_the_camera_and_the_report_counts_levels(api: Module
     receding_camera()
     full = api.knit(source, detail_mode="FULL", **STRIP)
     assert not full.auto_detail
-    outcome = api.knit(source, **STRIP)
+    outcome = api.knit(source, **STRIP, **COARSE)
     assert outcome.auto_detail
     lv = outcome.levels
     assert sum(lv.values()) == outcome.stitches
@@ -75,7 +39,7 @@ def test_auto_detail_follows_the_camera_and_the_report_counts_levels(api: Module
     # The operator says what it built.
     bpy.context.view_layer.objects.active = source
     source.select_set(True)
-    assert bpy.ops.object.knitwear_knit(**STRIP) == {"FINISHED"}
+    assert bpy.ops.object.knitwear_knit(**STRIP, **COARSE) == {"FINISHED"}
     knit = bpy.context.active_object
     assert len(knit.data.polygons) == outcome.triangles
 
@@ -121,7 +85,7 @@ def test_an_animated_camera_is_followed_over_the_frame_range(api: ModuleType) ->
 def test_stitches_below_a_few_pixels_are_left_to_the_knitwear_texture(api: ModuleType) -> None:
     source = strip()
     receding_camera()
-    outcome = api.knit(source, detail_texture_px=9.0, **STRIP)
+    outcome = api.knit(source, **STRIP, **(COARSE | {"detail_texture_px": 9.0}))
     assert outcome.levels["texture"] > 0
     assert outcome.texture_material is not None
     assert source.data.materials[0].name == outcome.texture_material

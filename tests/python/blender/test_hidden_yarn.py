@@ -1,0 +1,141 @@
+"""Cull Hidden Yarn in Blender: auto detail builds only the yarn the camera sees, the render
+does not change, the seen triangles are pinned so the knit follows its source with the same
+mesh, and a source that animates is not culled (what it would show later was never built)."""
+
+import importlib
+import sys
+from pathlib import Path
+from types import ModuleType
+
+import bpy
+import numpy as np
+from blender_scenes import STRIP, camera, positions, receding_camera, strip
+from PIL import Image
+
+# The speed-accuracy chart's SSIM, so the test and the chart measure alike.
+sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "scripts"))
+from chart_speed_accuracy import ssim as _ssim  # noqa: E402
+
+#: Workbench renders of the strip: small, one sample a pixel (no anti-aliasing), so the
+#: image is exactly the nearest triangle at each pixel centre.
+RES = (480, 270)
+
+
+def _render(path: Path) -> np.ndarray:
+    """Luminance in [0, 1] of a Workbench render of the scene (studio light, vertex
+    colours)."""
+    scene = bpy.context.scene
+    scene.render.engine = "BLENDER_WORKBENCH"
+    scene.render.resolution_x, scene.render.resolution_y = RES
+    scene.render.resolution_percentage = 100
+    scene.display.render_aa = "OFF"
+    scene.display.shading.light = "STUDIO"
+    scene.display.shading.color_type = "VERTEX"
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "PNG"
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True)
+    rgb = np.asarray(Image.open(path).convert("RGB"), dtype=np.float64) / 255.0
+    return rgb @ np.array([0.2126, 0.7152, 0.0722])
+
+
+def _scene() -> bpy.types.Object:
+    source = strip()
+    receding_camera()
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = RES
+    source.hide_render = True
+    return source
+
+
+def test_only_the_seen_yarn_is_built_and_the_render_does_not_change(
+    api: ModuleType, tmp_path: Path
+) -> None:
+    source = _scene()
+    whole = api.knit(source, cull_hidden=False, **STRIP)
+    assert whole.triangles_hidden == 0
+    before = _render(tmp_path / "whole.png")
+    bpy.data.objects.remove(whole.object)
+    # One visibility sample a pixel, at the pixel centres this render samples.
+    culled = api.knit(source, cull_hidden_samples=1, **STRIP)
+    after = _render(tmp_path / "culled.png")
+    assert culled.levels == whole.levels
+    assert culled.triangles + culled.triangles_hidden == whole.triangles
+    assert culled.triangles_hidden > 0.6 * whole.triangles, (culled.triangles, whole.triangles)
+    assert len(culled.object.data.polygons) == culled.triangles
+    # Every pixel shows the same triangle, shaded the same: the culled mesh carries the
+    # whole knit's smooth normals as custom normals.
+    assert culled.object.data.has_custom_normals
+    changed = np.abs(after - before) > 1.5 / 255
+    assert changed.mean() < 0.002, changed.mean()
+    assert _ssim(after, before) > 0.995
+    # The operator's report says how many triangles were hidden.
+    bpy.context.view_layer.objects.active = source
+    source.select_set(True)
+    assert bpy.ops.object.knitwear_knit(cull_hidden_samples=1, **STRIP) == {"FINISHED"}
+    assert len(bpy.context.active_object.data.polygons) == culled.triangles
+
+
+def test_the_seen_yarn_is_pinned_so_the_knit_follows_its_source(api: ModuleType) -> None:
+    source = _scene()
+    outcome = api.knit(source, **STRIP)
+    obj = outcome.object
+    assert outcome.triangles_hidden > 0
+    seen = bytes(obj[api.SEEN_PROPERTY])
+    assert len(seen) == -(-(outcome.triangles + outcome.triangles_hidden) // 8)
+    follow = importlib.import_module(f"{api.__package__}.follow")
+    # The source is edited (a stretch along its length): the knit follows with the same mesh.
+    source.scale.y *= 1.05
+    bpy.context.view_layer.update()
+    before = positions(obj.data).copy()
+    follow.follow(obj)
+    after = positions(obj.data)
+    assert after.shape == before.shape
+    assert np.abs(after[:, 1]).max() > np.abs(before[:, 1]).max() * 1.02
+
+    # Without the camera the pinned set still rebuilds the same mesh.
+    bpy.context.scene.camera = None
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    sampled = api.sample_source(obj, bpy.context, depsgraph)
+    knit = api.bind(obj, sampled, bpy.context.scene)
+    assert knit.vertex_count == len(obj.data.vertices)
+    np.testing.assert_array_equal(knit.positions(sampled.surface), after)
+    # Its normals moved with it: they are the whole knit's in the new pose.
+    normals = np.empty(after.shape, np.float32)
+    obj.data.attributes["custom_normal"].data.foreach_get("vector", normals.ravel())
+    np.testing.assert_array_equal(normals, knit.normals(sampled.surface))
+    assert np.abs(normals - knit.build(sampled.surface).normals).max() == 0
+
+
+def test_a_source_that_animates_keeps_its_hidden_yarn(api: ModuleType) -> None:
+    source = _scene()
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 5
+    source.keyframe_insert("rotation_euler", frame=1)
+    source.rotation_euler.x = 0.8
+    source.keyframe_insert("rotation_euler", frame=5)
+    scene.frame_set(1)
+    outcome = api.knit(source, **STRIP)
+    assert outcome.auto_detail
+    assert outcome.triangles_hidden == 0
+    assert api.SEEN_PROPERTY not in outcome.object
+    assert not outcome.object.data.has_custom_normals
+
+
+def test_a_camera_below_keeps_the_back_of_the_fabric(api: ModuleType) -> None:
+    source = strip()
+    camera((0.0, -0.38, 0.06), (0.0, -0.05, 0.0))
+    front = api.knit(source, **STRIP)
+    front_seen = np.unpackbits(
+        np.frombuffer(bytes(front.object[api.SEEN_PROPERTY]), np.uint8), bitorder="little"
+    )
+    camera((0.0, -0.38, -0.06), (0.0, -0.05, 0.0))  # the same view from below the strip
+    back = api.knit(source, **STRIP)
+    back_seen = np.unpackbits(
+        np.frombuffer(bytes(back.object[api.SEEN_PROPERTY]), np.uint8), bitorder="little"
+    )
+    assert back.levels == front.levels
+    # At this grazing angle both see the yarn's silhouettes, but a good part of what the
+    # view from below keeps (the back of the fabric) the view from above drops.
+    only_back = int((back_seen & (1 - front_seen)).sum())
+    assert only_back > 0.25 * back.triangles, (only_back, back.triangles)
