@@ -344,7 +344,7 @@ class KnitSettingsMixin:
         name="Full Above",
         description="Stitches at least this many pixels across in the render get the full "
         "quality set in Yarn",
-        default=24.0,
+        default=12.0,
         min=0.0,
         soft_max=200.0,
         precision=1,
@@ -354,7 +354,7 @@ class KnitSettingsMixin:
         name="Reduced Above",
         description="Stitches at least this many pixels across (and below Full Above) get "
         "half the samples and two thirds of the ring segments",
-        default=10.0,
+        default=5.0,
         min=0.0,
         soft_max=100.0,
         precision=1,
@@ -365,7 +365,7 @@ class KnitSettingsMixin:
         description="Stitches smaller than this many pixels are not built: the source "
         "surface wears the knitwear texture there. Between this and Reduced Above, stitches "
         "are plain tubes of 3 segments",
-        default=2.0,
+        default=1.0,
         min=0.0,
         soft_max=20.0,
         precision=1,

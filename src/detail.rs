@@ -103,11 +103,11 @@ pub struct DetailParams {
     pub views: Vec<CameraView>,
     /// Render resolution, pixels (width, height).
     pub resolution: (u32, u32),
-    /// Stitches at least this many pixels across are built at full quality. Default: 24.
+    /// Stitches at least this many pixels across are built at full quality. Default: 12.
     pub full_px: f32,
-    /// Stitches at least this many pixels across are built at `mid` quality. Default: 10.
+    /// Stitches at least this many pixels across are built at `mid` quality. Default: 5.
     pub mid_px: f32,
-    /// Stitches smaller than this many pixels are left to the knitwear texture. Default: 2.
+    /// Stitches smaller than this many pixels are left to the knitwear texture. Default: 1.
     pub texture_px: f32,
     /// Quality of [`Level::Mid`]. `None`: half the samples (at least 6) and two thirds of the
     /// ring segments (at least 3), fluff kept.
@@ -144,9 +144,9 @@ impl Default for DetailParams {
         Self {
             views: Vec::new(),
             resolution: (1920, 1080),
-            full_px: 24.0,
-            mid_px: 10.0,
-            texture_px: 2.0,
+            full_px: 12.0,
+            mid_px: 5.0,
+            texture_px: 1.0,
             mid: None,
             far: None,
             frustum_margin: 0.1,
