@@ -280,9 +280,9 @@ fn rasterise(
         if lo.is_nan() || hi.is_nan() || lo > hi {
             continue;
         }
-        let row = (j - oy) * TILE - ox;
+        // Buffer index of column c: a0 >= ox, so nothing here goes below zero.
+        let base = (j - oy) * TILE + (a0 - ox);
         for c in lo as usize..=hi as usize {
-            let i = a0 + c;
             let sx = sx0 + c as f32;
             let w1 = sx * d1x + sy * d1y;
             let w2 = sx * d2x + sy * d2y;
@@ -291,7 +291,7 @@ fn rasterise(
                 continue;
             }
             let z = z0 + w1 * (z1 - z0) + w2 * (z2 - z0);
-            let k = row + i;
+            let k = base + c;
             if z < depth[k] {
                 depth[k] = z;
                 id[k] = t;
