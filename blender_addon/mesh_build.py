@@ -118,7 +118,8 @@ NORMAL_ATTRIBUTE = "custom_normal"
 
 def write_normals(mesh: bpy.types.Mesh, normals: np.ndarray | None) -> None:
     """Give ``mesh`` the knit's own vertex normals (a knit with its hidden yarn culled
-    shades as the whole knit, whose triangles it no longer has), or none (``None``)."""
+    shades as the whole knit, whose triangles it no longer has), or none (``None``: a knit
+    that culls nothing, or a plush, whose result carries no normals)."""
     attribute = mesh.attributes.get(NORMAL_ATTRIBUTE)
     if normals is None:
         if attribute is not None:
@@ -154,7 +155,7 @@ def _build(name: str, result: object) -> bpy.types.Mesh:
     try:
         _set_colors(mesh, result.colors)
         mesh.shade_smooth()
-        write_normals(mesh, result.normals)
+        write_normals(mesh, getattr(result, "normals", None))
         mesh[TOPOLOGY_PROPERTY] = _topology_key(result)
     except BaseException:
         bpy.data.meshes.remove(mesh)
@@ -180,7 +181,7 @@ def fill_mesh(mesh: bpy.types.Mesh, result: object) -> bpy.types.Mesh:
     """
     if _same_topology(mesh, result):
         _set_colors(mesh, result.colors)
-        write_normals(mesh, result.normals)
+        write_normals(mesh, getattr(result, "normals", None))
         write_positions(mesh, result.vertices)
         return mesh
     name = mesh.name
