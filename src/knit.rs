@@ -191,6 +191,11 @@ pub struct KnitStats {
     pub flat_clearance: f32,
     /// Clearance of this result (min, 1st percentile) in diameters, if measured.
     pub clearance: Option<(f32, f32)>,
+    /// The interlock of this result, if measured (with the clearance): crossings between a
+    /// course and the loops it is pulled through, and how many of them have the yarn the
+    /// pattern says in front ([`crate::skeleton::crossings`]). Equal numbers: every course
+    /// interlocks with the one below, stitch by stitch.
+    pub interlock: Option<(usize, usize)>,
     /// Seconds spent in the core.
     pub seconds: f64,
     /// A key of the mesh topology (triangles, edges, their order): equal keys mean identical
@@ -829,6 +834,8 @@ impl PreparedKnit {
         };
         if self.params.measure_clearance {
             out.stats.clearance = Some(measure(&out));
+            let order = self.crossing_order(surface)?;
+            out.stats.interlock = Some((order.interlock_decided, order.interlock_agree));
         }
         Ok(out)
     }
@@ -1103,14 +1110,17 @@ impl PreparedKnit {
     }
 
     /// The interlock-topology metric of this knit on `surface` (see
-    /// [`crate::metrics::crossing_order`]).
-    pub fn crossing_order(&self, surface: &dyn Surface) -> Result<crate::metrics::CrossingOrder> {
+    /// [`crate::skeleton::crossings::crossing_order`]).
+    pub fn crossing_order(
+        &self,
+        surface: &dyn Surface,
+    ) -> Result<crate::skeleton::crossings::CrossingOrder> {
         let lines: Vec<Vec<Vec3>> = self
             .uv_centrelines(surface)?
             .into_iter()
             .map(|y| y.points)
             .collect();
-        Ok(crate::metrics::crossing_order(
+        Ok(crate::skeleton::crossings::crossing_order(
             &self.lattice,
             &self.pattern,
             &self.pieces,

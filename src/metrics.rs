@@ -9,9 +9,9 @@
 //! value is the exact minimum over a set of candidates fixed by the geometry alone, so the
 //! result is bit for bit the same for any number of threads.
 
-mod crossing_order;
+mod cover;
 
-pub use crossing_order::{crossing_order, CrossingOrder};
+pub use cover::cover;
 
 use glam::Vec3;
 use rayon::prelude::*;

@@ -422,7 +422,10 @@ fn key_points_stay_within_a_small_margin_of_the_domain() {
             let t = l.tile.as_dvec2();
             for r in 0..courses {
                 for c in 0..wales {
-                    for k in knitwear::skeleton::key_points(&l.tile(r, c)) {
+                    for k in knitwear::skeleton::key_points(
+                        &l.tile(r, c),
+                        &knitwear::skeleton::LoopShape::PAPER,
+                    ) {
                         let k = k.as_dvec2();
                         let out = ((lo - k).max(k - hi) / t).max(glam::DVec2::ZERO);
                         worst[0] = worst[0].max(out.x);

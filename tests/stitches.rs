@@ -5,8 +5,8 @@ use std::f32::consts::TAU;
 
 use glam::Vec3;
 use knitwear::knit::{KnitParams, PreparedKnit};
-use knitwear::metrics::CrossingOrder;
 use knitwear::pattern::{Instruction as I, StitchPattern, WrittenRow};
+use knitwear::skeleton::crossings::CrossingOrder;
 use knitwear::surface::{GridSurface, PlaneSurface, Surface};
 
 fn grid(
@@ -165,17 +165,26 @@ fn measured_at(surface: &dyn Surface, pattern: &StitchPattern, kappa: f32) -> (f
     )
 }
 
-/// The clearance every preset keeps, in yarn diameters (issue 3). At the default gauge rows
-/// are 3.5 diameters tall; contact relief (`skeleton/contact.rs`), taller rows where loops
-/// lean (`skeleton/leaning_rows.rs`), denser sampling of leaning courses
-/// (`skeleton/sampling_density.rs`), tuning for the tighter stitches (`tight_stitches.rs`)
-/// and, where an edge cuts a repeat, the straightened pattern's relief and corrections made
-/// for the piece's edge (`contact::relieve_edges`) clear it.
-const CLEARANCE_TARGET: f32 = 0.95;
+/// The clearance every preset keeps, in yarn diameters, with every course interlocked
+/// (DESIGN.md section 3). The earlier floor of 0.95 was reached by flipping sinkers and leg
+/// tops to the wrong side of the fabric (courses stacked like roof shingles); inside the
+/// interlock the tuned key-point offsets and loop shapes reach less, and this floor records
+/// what they keep so that it cannot fall further. Raising it to 0.95 is the open work of
+/// "Knitted, not stacked" (relaxed loop shapes).
+const CLEARANCE_TARGET: f32 = CLEARANCE_FLOOR;
 
-/// Clearance (min, in diameters) of every preset on a flat sheet, a cylinder and a sphere at
-/// default settings, and the crossing-order metric (DESIGN.md section 7) on the sheet and the
-/// cylinder: every crossing the pattern decides is the right way round.
+/// The least clearance any preset keeps on any of the test surfaces (see
+/// [`CLEARANCE_TARGET`]).
+const CLEARANCE_FLOOR: f32 = 0.15;
+
+/// Plain knit/purl textures (no crossing, decrease or yarn-over) keep more.
+const PLAIN_CLEARANCE_FLOOR: f32 = 0.5;
+
+/// Every preset on a flat sheet, a cylinder and a sphere at default settings: every course
+/// interlocks with the one below at every crossing (DESIGN.md section 3), the crossings each
+/// stitch's own rule decides are the right way round, and the independent check of section 7
+/// holds: in nearly every stitch-wide bucket of a course's crossings with the course below,
+/// the upper course is in front at about half of them. Clearance keeps its floor.
 #[test]
 fn every_preset_crosses_as_its_pattern_says() {
     let plane = PlaneSurface {
@@ -189,13 +198,25 @@ fn every_preset_crosses_as_its_pattern_says() {
         let pattern = StitchPattern::preset(name).unwrap();
         let (flat, order_flat) = measured(&plane, &pattern);
         let (round, order_round) = measured(&cyl, &pattern);
-        let (ball, _) = measured(&sphere, &pattern);
+        let (ball, order_ball) = measured(&sphere, &pattern);
         println!(
-            "{name:20} clearance flat {flat:.3} cylinder {round:.3} sphere {ball:.3}; crossings \
-             {}/{} and {}/{}",
-            order_flat.agree, order_flat.decided, order_round.agree, order_round.decided
+            "{name:20} clearance flat {flat:.3} cylinder {round:.3} sphere {ball:.3}; interlock \
+             {}/{}, {}/{}, {}/{}; half-front buckets {}/{}",
+            order_flat.interlock_agree,
+            order_flat.interlock_decided,
+            order_round.interlock_agree,
+            order_round.interlock_decided,
+            order_ball.interlock_agree,
+            order_ball.interlock_decided,
+            order_flat.buckets_half_front,
+            order_flat.buckets,
         );
-        let floor = CLEARANCE_TARGET;
+        let plain = !pattern.has_crossings();
+        let floor = if plain {
+            PLAIN_CLEARANCE_FLOOR
+        } else {
+            CLEARANCE_TARGET
+        };
         for (surface, c) in [("sheet", flat), ("cylinder", round), ("sphere", ball)] {
             if c < floor {
                 failures.push(format!(
@@ -203,20 +224,92 @@ fn every_preset_crosses_as_its_pattern_says() {
                 ));
             }
         }
-        for (surface, order) in [("sheet", &order_flat), ("cylinder", &order_round)] {
-            assert!(
-                order.decided > 0,
-                "{name} on the {surface}: no crossings found"
-            );
-            if order.agree != order.decided {
+        for (surface, order) in [
+            ("sheet", &order_flat),
+            ("cylinder", &order_round),
+            ("sphere", &order_ball),
+        ] {
+            if order.interlock_decided == 0 {
+                failures.push(format!("{name} on the {surface}: no interlock crossings"));
+            }
+            if order.agree != order.decided || order.interlock_agree != order.interlock_decided {
                 failures.push(format!(
                     "{name} on the {surface}: {:?}",
                     order.first_disagreement
                 ));
             }
+            // A stacked course has the upper course in front at all of a bucket's crossings.
+            if 10 * order.buckets_half_front < 9 * order.buckets {
+                failures.push(format!(
+                    "{name} on the {surface}: {} of {} buckets half in front",
+                    order.buckets_half_front, order.buckets
+                ));
+            }
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// A course laid wholly over the one below (the roof shingle this project once knitted) is
+/// caught by the interlock measure at half its crossings, and by the bucket check in every
+/// bucket: the measure only the right structure passes.
+#[test]
+fn a_stacked_course_fails_the_interlock() {
+    use knitwear::lattice::Lattice;
+    use knitwear::skeleton::crossings::crossing_order;
+    use knitwear::skeleton::{sample_piece_uv, yarn_pieces, NormalOffsets, SplineSampling};
+    use knitwear::surface::UvRect;
+    let pattern = StitchPattern::preset("stockinette").unwrap();
+    let (courses, wales) = (8, 8);
+    let domain = UvRect {
+        min: glam::Vec2::ZERO,
+        max: glam::Vec2::new(1.0, 1.0),
+    };
+    let lattice = Lattice::regular(domain, courses, wales, false, false);
+    let pieces = yarn_pieces(&lattice, &vec![true; courses * wales]);
+    let sampling = SplineSampling {
+        samples_per_loop: 24,
+        tension: 0.0,
+    };
+    let lines = |offsets: &NormalOffsets| -> Vec<Vec<Vec3>> {
+        pieces
+            .iter()
+            .map(|p| {
+                let n = p.sample_count(24);
+                let mut uvl = vec![Vec3::ZERO; n];
+                let mut own = vec![0u32; n];
+                sample_piece_uv(
+                    &PlaneSurface {
+                        width: 1.0,
+                        height: 1.0,
+                    },
+                    &lattice,
+                    &pattern,
+                    offsets,
+                    &sampling,
+                    p,
+                    &mut uvl,
+                    &mut own,
+                );
+                uvl
+            })
+            .collect()
+    };
+    // The interlock's signs: legs in front, head and sinker behind.
+    let right = NormalOffsets::uniform(0.5);
+    let order = crossing_order(&lattice, &pattern, &pieces, &lines(&right), 24);
+    assert!(order.interlock_decided > 0, "{order:?}");
+    assert_eq!(order.interlock_agree, order.interlock_decided, "{order:?}");
+    assert_eq!(order.buckets_half_front, order.buckets, "{order:?}");
+    // The stacked knit: sinker and leg tops flipped (what the clearance tuning once chose).
+    let mut stacked = NormalOffsets::uniform(0.5);
+    stacked.x[0] = -0.5;
+    stacked.x[2] = -0.5;
+    stacked.x[4] = -0.5;
+    let order = crossing_order(&lattice, &pattern, &pieces, &lines(&stacked), 24);
+    let fraction = order.interlock();
+    assert!((0.4..0.6).contains(&fraction), "{order:?}");
+    assert_eq!(order.buckets_half_front, 0, "{order:?}");
 }
 
 /// The add-on's default irregularity (kappa 0.005, `blender_addon/properties.py`): the
@@ -316,7 +409,7 @@ fn fair_isle_floats_run_behind_the_fabric_in_their_own_colour() {
     let courses = &out.yarn_course;
     assert_eq!(courses.len(), out.stats.yarn_pieces);
     let (min, _) = out.stats.clearance.unwrap();
-    assert!(min >= 0.95, "clearance {min}");
+    assert!(min >= PLAIN_CLEARANCE_FLOOR, "clearance {min}");
     let order = knit.crossing_order(&plane).unwrap();
     assert!(
         order.decided > 0 && order.agree == order.decided,

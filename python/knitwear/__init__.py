@@ -39,6 +39,7 @@ from ._core import (
     fractal_noise,
     knit_texture,
     measure_clearance,
+    measure_cover,
     plush,
 )
 
@@ -79,5 +80,6 @@ __all__ = [
     "knit",
     "knit_texture",
     "measure_clearance",
+    "measure_cover",
     "plush",
 ]

@@ -251,6 +251,14 @@ def knit_texture(
 def measure_clearance(result: KnitResult) -> tuple[float, float]:
     """(min, 1st percentile) centreline clearance in yarn diameters."""
 
+def measure_cover(
+    result: KnitResult,
+    bounds: tuple[float, float, float, float],
+    resolution: int = 800,
+) -> float:
+    """Fraction of the rectangle (x_min, y_min, x_max, y_max) of object space hidden by the
+    yarn's tubes (no fluff) seen orthographically along z."""
+
 # Plush (warp-knit pile). Lengths in scene units, angles in radians; positions, `eye` and
 # `view_dir` in the surface's object space. The fabric frame: x along the course (u), y along
 # the wale (v), z the surface normal.

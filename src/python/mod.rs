@@ -498,6 +498,7 @@ fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResult> {
     stats.set_item("flat_clearance", s.flat_clearance)?;
     stats.set_item("clearance_min", s.clearance.map(|c| c.0))?;
     stats.set_item("clearance_p01", s.clearance.map(|c| c.1))?;
+    stats.set_item("interlock", s.interlock)?;
     stats.set_item("seconds", s.seconds)?;
     stats.set_item("topology_key", s.topology_key)?;
     let levels = PyDict::new(py);
@@ -888,9 +889,12 @@ impl PyKnit {
     }
 }
 
-/// Clearance of a knit result: `(min, p01)` in yarn diameters (DESIGN.md section 7).
-#[pyfunction]
-fn measure_clearance(py: Python<'_>, result: &Bound<'_, PyKnitResult>) -> PyResult<(f32, f32)> {
+/// A knit result's centreline: its points (scene units), each yarn piece's range of points
+/// and whether it is closed, and the yarn radius.
+type Centreline = (Vec<glam::Vec3>, Vec<(usize, usize, bool)>, f32);
+
+/// See [`Centreline`].
+fn result_centreline(py: Python<'_>, result: &Bound<'_, PyKnitResult>) -> PyResult<Centreline> {
     let r = result.get();
     let (_, pts) = f32_buffer(
         r.centerline_points.bind(py),
@@ -899,22 +903,74 @@ fn measure_clearance(py: Python<'_>, result: &Bound<'_, PyKnitResult>) -> PyResu
     )?;
     let offsets: Vec<i64> = r.course_offsets.bind(py).extract()?;
     let closed: Vec<bool> = r.yarn_closed.bind(py).extract()?;
-    let diameter = 2.0 * r.yarn_radius;
+    let v: Vec<glam::Vec3> = pts
+        .chunks_exact(3)
+        .map(|c| glam::Vec3::new(c[0], c[1], c[2]))
+        .collect();
+    let n = v.len();
+    let ranges = offsets
+        .windows(2)
+        .zip(&closed)
+        .map(|(w, &c)| {
+            let (a, b) = (w[0].clamp(0, n as i64), w[1].clamp(0, n as i64));
+            (a as usize, b.max(a) as usize, c)
+        })
+        .collect();
+    Ok((v, ranges, r.yarn_radius))
+}
+
+/// Clearance of a knit result: `(min, p01)` in yarn diameters (DESIGN.md section 7).
+#[pyfunction]
+fn measure_clearance(py: Python<'_>, result: &Bound<'_, PyKnitResult>) -> PyResult<(f32, f32)> {
+    let (v, ranges, radius) = result_centreline(py, result)?;
     guarded(py, move || {
-        let v: Vec<glam::Vec3> = pts
-            .chunks_exact(3)
-            .map(|c| glam::Vec3::new(c[0], c[1], c[2]))
-            .collect();
-        let yarns: Vec<YarnPolyline> = offsets
-            .windows(2)
-            .zip(&closed)
-            .map(|(w, &c)| YarnPolyline {
-                points: &v[w[0] as usize..w[1] as usize],
+        let yarns: Vec<YarnPolyline> = ranges
+            .iter()
+            .map(|&(a, b, c)| YarnPolyline {
+                points: &v[a..b],
                 closed: c,
             })
             .collect();
-        let c = clearance(&yarns, diameter, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS, 3.0);
+        let c = clearance(
+            &yarns,
+            2.0 * radius,
+            DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
+            3.0,
+        );
         Ok((c.min, c.p01))
+    })
+}
+
+/// Optical cover of a knit result (DESIGN.md section 7): the fraction of the rectangle
+/// `bounds = (x_min, y_min, x_max, y_max)` (object space) hidden by the yarn's tubes (no
+/// fluff) in an orthographic view along z, sampled on `resolution` x `resolution` pixels.
+#[pyfunction]
+#[pyo3(signature = (result, bounds, resolution=800))]
+fn measure_cover(
+    py: Python<'_>,
+    result: &Bound<'_, PyKnitResult>,
+    bounds: (f32, f32, f32, f32),
+    resolution: usize,
+) -> PyResult<f64> {
+    let (v, ranges, radius) = result_centreline(py, result)?;
+    if !(1..=8192).contains(&resolution) {
+        return Err(to_py(KnitError::Parameter(format!(
+            "resolution must be in 1..=8192, not {resolution}"
+        ))));
+    }
+    let (min, max) = (
+        glam::Vec2::new(bounds.0, bounds.1),
+        glam::Vec2::new(bounds.2, bounds.3),
+    );
+    if !(min.is_finite() && max.is_finite() && max.x > min.x && max.y > min.y) {
+        return Err(to_py(KnitError::Parameter(format!(
+            "bounds must be a finite rectangle (x_min, y_min, x_max, y_max), not {bounds:?}"
+        ))));
+    }
+    guarded(py, move || {
+        let yarns: Vec<(&[glam::Vec3], bool)> =
+            ranges.iter().map(|&(a, b, c)| (&v[a..b], c)).collect();
+        Ok(crate::metrics::cover(&yarns, radius, min, max, resolution))
     })
 }
 
@@ -944,6 +1000,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyKnitResult>()?;
     m.add_class::<PyKnit>()?;
     m.add_function(wrap_pyfunction!(measure_clearance, m)?)?;
+    m.add_function(wrap_pyfunction!(measure_cover, m)?)?;
     m.add_function(wrap_pyfunction!(_force_internal_error, m)?)?;
     pile::register(m)?;
     texture::register(m)?;

@@ -27,11 +27,10 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
+use super::crossings::crossing_order;
 use super::{sample_piece, yarn_pieces, NormalOffsets, SplineSampling, KEY_POINTS};
 use crate::lattice::Lattice;
-use crate::metrics::{
-    clearance, close_pairs, crossing_order, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
-};
+use crate::metrics::{clearance, close_pairs, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
 use crate::pattern::StitchPattern;
 use crate::surface::{PlaneSurface, Surface};
 

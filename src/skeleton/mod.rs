@@ -10,6 +10,7 @@
 
 pub mod bobbles;
 pub mod contact;
+pub mod crossings;
 pub mod curvature;
 pub mod floats;
 mod key_points;
@@ -20,7 +21,7 @@ mod spline;
 pub mod stitch_shape;
 pub mod tuning;
 
-pub use key_points::{boundary_sinker, key_points, KEY_POINTS};
+pub use key_points::{boundary_sinker, key_points, LoopShape, KEY_POINTS};
 pub use offsets::{NormalOffsets, Shape, StraightWales, DEFAULT_SHAPE, SHAPE_COEFFICIENTS};
 pub use spline::CardinalSpline;
 pub use stitch_shape::stitch_key_points;
@@ -100,7 +101,7 @@ pub fn built_stitches(surface: &dyn Surface, lattice: &Lattice) -> Vec<bool> {
         .enumerate()
         .for_each(|(r, row)| {
             for (w, b) in row.iter_mut().enumerate() {
-                let mut kp = key_points(&lattice.tile(r, w));
+                let mut kp = key_points(&lattice.tile(r, w), &LoopShape::PAPER);
                 lattice.keep_on_fabric(&mut kp);
                 *b = kp.iter().all(|uv| surface.eval(*uv).is_some());
             }

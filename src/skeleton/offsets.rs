@@ -20,7 +20,7 @@
 use std::sync::Arc;
 
 use super::contact::{ContactRelief, EdgeRelief};
-use super::KEY_POINTS;
+use super::{LoopShape, KEY_POINTS};
 use crate::pattern::Stitch;
 
 /// Signed normal-offset coefficients of the six key points, in scene units, each in
@@ -45,6 +45,8 @@ pub struct NormalOffsets {
     /// ([`super::stitch_shape::wale_knits_whole`]), and their offsets. `None`: the piece has
     /// no such wale (and a tuning patch never has).
     pub straight: Option<Arc<StraightWales>>,
+    /// Where the key points stand in their tiles, tuned with the offsets.
+    pub loop_shape: LoopShape,
 }
 
 /// The wales of a piece knitted straight, and the offsets they take: the pattern's
@@ -103,6 +105,7 @@ impl NormalOffsets {
             shape: DEFAULT_SHAPE,
             relief: None,
             straight: None,
+            loop_shape: LoopShape::PAPER,
         }
     }
 
@@ -168,6 +171,7 @@ impl NormalOffsets {
             x: self.x.map(|v| v * k),
             diameter: self.diameter * k,
             shape: self.shape,
+            loop_shape: self.loop_shape,
             relief: self.relief,
             straight: self.straight.map(|s| {
                 Arc::new(StraightWales {

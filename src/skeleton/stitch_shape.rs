@@ -152,8 +152,8 @@ pub fn stitch_key_points(
     let above = pattern.stitch(course + 1 + rise, dest.rem_euclid(wales as isize) as usize);
     let own = tile_at(lattice, course, w as isize + unwrap);
     let top = tile_at(lattice, course + rise, dest + unwrap);
-    let bottom_kp = key_points(&own);
-    let top_kp = key_points(&top);
+    let bottom_kp = key_points(&own, &offsets.loop_shape);
+    let top_kp = key_points(&top, &offsets.loop_shape);
     let mut kp = [
         bottom_kp[0],
         bottom_kp[1],
@@ -227,7 +227,10 @@ pub fn stitch_key_points(
         lambdas[5] += layer.max(0.0) * bottom;
         lambdas[2] += layer * top;
         lambdas[4] += layer * top;
-        lambdas[3] += layer * offsets.shape(Shape::PushHead);
+        // At its head a loop is held by the legs of the stitch pulled through it: a loop in
+        // front must not be pushed forward through those legs (which would undo the
+        // interlock), so only loops behind move back there, twice as far.
+        lambdas[3] += 2.0 * layer.min(0.0) * offsets.shape(Shape::PushHead);
     }
     if dest != w as isize {
         // A loop leaning across columns is stretched thin: its legs would lie nearly on top of

@@ -12,13 +12,12 @@ use std::sync::{Mutex, OnceLock};
 
 use glam::Vec3;
 
+use super::crossings::crossing_order;
 use super::offsets::COEFFICIENTS;
 use super::offsets::{Shape, DEFAULT_SHAPE, SHAPE_COEFFICIENTS};
-use super::{contact, sample_piece, yarn_pieces, NormalOffsets, SplineSampling};
+use super::{contact, sample_piece, yarn_pieces, LoopShape, NormalOffsets, SplineSampling};
 use crate::lattice::Lattice;
-use crate::metrics::{
-    clearance, crossing_order, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
-};
+use crate::metrics::{clearance, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
 use crate::pattern::{Form, StitchPattern};
 use crate::surface::{PlaneSurface, Surface};
 
@@ -233,7 +232,7 @@ pub fn patch_clearance(
 }
 
 /// Clearance (min, p01) and, if `order`, the fraction of the crossings the pattern decides
-/// that are the wrong way round ([`crate::metrics::crossing_order`]; 0 otherwise).
+/// that are the wrong way round ([`crate::skeleton::crossings::crossing_order`]; 0 otherwise).
 fn patch_measure(
     pattern: &StitchPattern,
     width: f32,
@@ -345,38 +344,72 @@ fn untuned(per_lean: f32) -> Tuned {
             shape: DEFAULT_SHAPE,
             relief: None,
             straight: None,
+            loop_shape: LoopShape::PAPER,
         },
         clearance_min: 0.0,
         per_lean,
     }
 }
 
-/// Deterministic compass search over the six signed coefficients in `[-1, 1]` diameters,
-/// started from each of a few fixed points; the best result wins.
+/// The search's variables: the normal-offset coefficients (diameters), then the loop shape
+/// (fractions of a tile, [`LoopShape::to_array`]).
+const VARIABLES: usize = COEFFICIENTS + LoopShape::FIELDS;
+
+/// Offsets in diameters from the search's variables.
+fn offsets_of(v: &[f32; VARIABLES]) -> NormalOffsets {
+    NormalOffsets {
+        x: std::array::from_fn(|i| v[i]),
+        diameter: 1.0,
+        shape: DEFAULT_SHAPE,
+        relief: None,
+        straight: None,
+        loop_shape: LoopShape::from_array(std::array::from_fn(|i| v[COEFFICIENTS + i])),
+    }
+}
+
+/// Bounds and step scale of variable `i`: the coefficients move by the step in diameters,
+/// the loop shape by a fifth of it in tiles.
+fn variable_bounds(i: usize) -> (f32, f32, f32) {
+    if i < COEFFICIENTS {
+        (LOWER[i], 1.0, 1.0)
+    } else {
+        let (lo, hi) = LoopShape::BOUNDS[i - COEFFICIENTS];
+        (lo, hi, 0.2)
+    }
+}
+
+/// Deterministic compass search over the signed coefficients in `[LOWER, 1]` diameters and
+/// the loop shape within [`LoopShape::BOUNDS`], started from each of a few fixed points; the
+/// best result wins.
 fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_lean: f32) -> Tuned {
-    let score = |x: &[f32; COEFFICIENTS]| {
-        let offsets = NormalOffsets {
-            x: *x,
-            diameter: 1.0,
-            shape: DEFAULT_SHAPE,
-            relief: None,
-            straight: None,
-        };
-        let (min, p01) = patch_clearance(pattern, width, height, tension, per_lean, &offsets);
-        (min + 0.1 * p01, min)
+    let score = |v: &[f32; VARIABLES]| {
+        let offsets = offsets_of(v);
+        // Clearance, but never at the price of a crossing the wrong way round: a loop whose
+        // leg top sits on the surface leaves its interlock to the spline's overshoot.
+        let (min, p01, wrong) =
+            patch_measure(pattern, width, height, tension, per_lean, &offsets, true);
+        (min + 0.1 * p01 - 100.0 * wrong as f32, min)
     };
     // Every start's optimum, best first.
-    let mut found: Vec<(f32, f32, [f32; COEFFICIENTS])> = Vec::new();
+    let mut found: Vec<(f32, f32, [f32; VARIABLES])> = Vec::new();
     for start in START_POINTS {
-        let mut x = *start;
+        let paper = LoopShape::PAPER.to_array();
+        let mut x: [f32; VARIABLES] = std::array::from_fn(|i| {
+            if i < COEFFICIENTS {
+                start[i]
+            } else {
+                paper[i - COEFFICIENTS]
+            }
+        });
         let (mut best, mut best_min) = score(&x);
         let mut step = 0.25f32;
         while step >= 1.0 / 32.0 {
             let mut improved = false;
-            for i in 0..COEFFICIENTS {
+            for i in 0..VARIABLES {
+                let (lo, hi, scale) = variable_bounds(i);
                 for dir in [1.0f32, -1.0] {
                     let mut y = x;
-                    y[i] = (y[i] + dir * step).clamp(LOWER[i], 1.0);
+                    y[i] = (y[i] + dir * step * scale).clamp(lo, hi);
                     if y[i] == x[i] {
                         continue;
                     }
@@ -402,13 +435,7 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
     let free = shape_coefficients_used(pattern);
     let mut result: Option<Tuned> = None;
     for (_, clearance_min, x) in found {
-        let offsets = NormalOffsets {
-            x,
-            diameter: 1.0,
-            shape: DEFAULT_SHAPE,
-            relief: None,
-            straight: None,
-        };
+        let offsets = offsets_of(&x);
         let tuned = if free.is_empty() || !TUNE_SHAPE {
             Tuned {
                 offsets,
@@ -536,20 +563,19 @@ fn tune_shape(
     }
 }
 
-/// Lower bounds of the coefficients. The leg bottoms (k1, k5) must pass the head below on
-/// their stitch's side and the head (k3) the legs above on the other side: that crossing is
-/// the interlock a knit or purl stitch is, so the search may not flip it. The sinker and the
-/// leg tops are free: on a flat sheet the best clearance has the leg tops leaving towards the
-/// head behind the row above, as in real stockinette where each V's arms tuck under the V
-/// above.
-const LOWER: [f32; COEFFICIENTS] = [-1.0, 0.0, -1.0, 0.0, -1.0, 0.0, -1.0];
+/// Lower bounds of the coefficients: every key point on the side the interlock puts it
+/// (DESIGN.md section 3), so the search shapes the loops but never flips one to the other
+/// side of the fabric (which stacks the courses like roof shingles: the clearance it wins is
+/// not the knit's). The leg bottoms (k1, k5) and the leg tops (k2, k4) pass the head below
+/// and the sinker above on their stitch's side; the head (k3) and the sinker (k0) pass the
+/// legs above and below on the other side. Only the extra offset of a sinker on a knit/purl
+/// boundary, where the yarn goes from one side to the other, may take either sign.
+const LOWER: [f32; COEFFICIENTS] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0];
 
-/// Starting points of the search (coefficients in diameters, see [`NormalOffsets`]): the
-/// stockinette optimum found by an exhaustive grid search (1.25 diameters of clearance at a
-/// diameter of 0.2 stitch widths and rows of 0.71 stitch widths), the best of a random
-/// search on a 1x1 rib (1.07), and the seed-stitch optimum (1.27).
+/// Starting points of the search (coefficients in diameters, see [`NormalOffsets`]): half a
+/// diameter each side, the legs further out than the head and sinker, and the reverse.
 const START_POINTS: &[[f32; COEFFICIENTS]] = &[
-    [-1.0, 1.0, -1.0, 1.0, -1.0, 1.0, 0.0],
-    [-0.5, 0.5, -1.0, 1.0, -0.5, 0.75, 0.0],
-    [-0.5, 1.0, -1.0, 0.25, -1.0, 0.75, 0.0],
+    [0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.0],
+    [0.25, 0.75, 0.75, 0.25, 0.75, 0.75, 0.0],
+    [0.75, 0.25, 0.25, 0.75, 0.25, 0.25, 0.0],
 ];

@@ -141,10 +141,10 @@ def test_a_yarn_too_thick_for_its_stitch_is_a_warning(api: ModuleType, addon: Mo
     # in a stitch (it is not refused) but its loops overlap: the user is warned, with the figure.
     source = nurbs_patch()
     thin, summary = _knit_ok(api, addon, source)
-    assert thin.flat_clearance >= 0.95 and "too thick" not in summary
+    assert thin.flat_clearance >= api.MIN_CLEARANCE and "too thick" not in summary
     assert addon.operators._report_level(thin) == {"INFO"}
     stitch = api.knit_result(source, **SMALL).stats["stitch_width"]
     thick, summary = _knit_ok(api, addon, source, yarn_radius=0.3 * stitch)
-    assert thick.flat_clearance < 0.95
+    assert thick.flat_clearance < api.MIN_CLEARANCE
     assert "too thick for its stitch" in summary and f"{thick.flat_clearance:.2f}" in summary
     assert addon.operators._report_level(thick) == {"WARNING"}

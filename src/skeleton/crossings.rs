@@ -1,0 +1,404 @@
+//! Which yarn is in front where two yarns cross (DESIGN.md sections 3 and 7): the interlock
+//! of every course with the one below, and the order of crossed, twisted, slipped and
+//! stranded yarn, as the stitch pattern says.
+//!
+//! Crossings are found in the (u, v) domain, where the normal offset lambda is the depth:
+//! two centreline segments whose (u, v) projections intersect cross there, and the one with
+//! the larger lambda at the intersection is in front. Each segment knows the stitch it belongs
+//! to and which part of the loop it is (sinker, left leg, head, right leg).
+//!
+//! **The interlock.** Every loop L of a course is held by the stitch pulled through it, its
+//! *puller* P: the stitch of the next course (the one after, under a slipped stitch) in the
+//! column L lands in. Every crossing of a yarn of a later course U with L, where U is P's
+//! course, is decided by P's face:
+//!
+//! - P's own legs (and head) pass L in front for a knit P, behind for a purl: the new loop
+//!   was pulled through L from the back (knit) or the front (purl);
+//! - a sinker of U (the yarn between two wales at the foot of its loops) passes L on the
+//!   other side: behind the leg tops of L under a knit P, in front under a purl;
+//! - any other loop of U that crosses L (a yarn-over's short legs, a loop leaning past it)
+//!   lies on P's face side of it, as the fabric round P does.
+//!
+//! So stockinette has its upper course in front at about half of the crossings, stitch by
+//! stitch; a course wholly in front of the one below (a roof shingle) fails half of them.
+//! No crossing between a course and the course its loops hang from is left undecided.
+//!
+//! Beyond the interlock, each stitch states its own rule:
+//! - two loops of one row that lean across each other (a cable) or are gathered by one
+//!   decrease: the one with the higher layer in front;
+//! - the crossed legs of a twisted stitch: the leg the yarn reaches first in front;
+//! - a float past a slipped stitch and the loop it passes: the float in front when the yarn
+//!   was held in front;
+//! - a float of stranded colourwork behind the fabric, a bobble's ball in front of it.
+//!
+//! Crossings of one course with itself or with courses further away that none of these
+//! rules decide are counted as undecided.
+
+use glam::{Vec2, Vec3};
+
+use super::stitch_shape::landing;
+use super::{YarnPiece, KEY_POINTS};
+use crate::lattice::Lattice;
+use crate::pattern::{Face, Form, StitchPattern};
+
+/// The result: crossings decided by a rule, how many of them agree, and the rest.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CrossingOrder {
+    /// Every decided crossing (the interlock's included).
+    pub decided: usize,
+    pub agree: usize,
+    /// Crossings of a course with the course its loops hang from (always decided), and how
+    /// many of them agree with the interlock rule.
+    pub interlock_decided: usize,
+    pub interlock_agree: usize,
+    /// Crossings no rule decides (within one course, or courses further apart).
+    pub undecided: usize,
+    /// The independent check of DESIGN.md section 7: interlock crossings bucketed by lower
+    /// course and stitch-wide column; `buckets` of them hold a crossing, and
+    /// `buckets_half_front` have the upper course in front at between a quarter and three
+    /// quarters of theirs. A stacked course scores 0 here whatever its depths.
+    pub buckets: usize,
+    pub buckets_half_front: usize,
+    /// The first disagreement found, described, for a test's message.
+    pub first_disagreement: Option<String>,
+}
+
+impl CrossingOrder {
+    /// The fraction of decided crossings that agree (1 when there are none).
+    pub fn fraction(&self) -> f64 {
+        ratio(self.agree, self.decided)
+    }
+
+    /// The fraction of interlock crossings that agree (1 when there are none).
+    pub fn interlock(&self) -> f64 {
+        ratio(self.interlock_agree, self.interlock_decided)
+    }
+}
+
+fn ratio(a: usize, b: usize) -> f64 {
+    if b == 0 {
+        1.0
+    } else {
+        a as f64 / b as f64
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Part {
+    Sinker,
+    LeftLeg,
+    Head,
+    RightLeg,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Seg {
+    a: Vec3,
+    b: Vec3,
+    piece: usize,
+    /// Index along the piece, for telling neighbours apart.
+    index: usize,
+    course: usize,
+    wale: usize,
+    part: Part,
+    /// Part of a float of stranded colourwork.
+    float: bool,
+    /// Part of a bobble's ball.
+    knot: bool,
+}
+
+/// What decides a crossing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Rule {
+    /// The interlock of a loop and the course pulled through it.
+    Interlock,
+    /// A stitch's own rule (cable layers, twisted legs, floats, bobbles).
+    Stitch,
+}
+
+/// Measures the crossing order of `pieces`, whose centrelines in (u, v, lambda) are
+/// `lines[i]` (as [`crate::skeleton::sample_piece_uv`] gives them, `samples_per_loop` per
+/// stitch).
+pub fn crossing_order(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    pieces: &[YarnPiece],
+    lines: &[Vec<Vec3>],
+    samples_per_loop: usize,
+) -> CrossingOrder {
+    let wales = lattice.wales;
+    let period = lattice.tile.x * wales as f32;
+    let segs = segments(lattice, pieces, lines, samples_per_loop);
+    // A uniform grid over (u, v) with cells of one stitch.
+    let cell = lattice.tile;
+    let key = |p: Vec2| ((p.x / cell.x).floor() as i64, (p.y / cell.y).floor() as i64);
+    let mut grid: std::collections::HashMap<(i64, i64), Vec<usize>> =
+        std::collections::HashMap::new();
+    for (i, s) in segs.iter().enumerate() {
+        let (lo, hi) = (
+            s.a.truncate().min(s.b.truncate()),
+            s.a.truncate().max(s.b.truncate()),
+        );
+        let (k0, k1) = (key(lo), key(hi));
+        for x in k0.0..=k1.0 {
+            for y in k0.1..=k1.1 {
+                grid.entry((x, y)).or_default().push(i);
+            }
+        }
+    }
+    let columns = (period / cell.x).round() as i64;
+    let mut result = CrossingOrder::default();
+    // Interlock crossings per (lower course, column): (upper in front, all).
+    let mut buckets: std::collections::BTreeMap<(usize, i64), (usize, usize)> =
+        std::collections::BTreeMap::new();
+    let mut seen = std::collections::HashSet::new();
+    for (i, s) in segs.iter().enumerate() {
+        let (lo, hi) = (
+            s.a.truncate().min(s.b.truncate()),
+            s.a.truncate().max(s.b.truncate()),
+        );
+        let (k0, k1) = (key(lo), key(hi));
+        for x in k0.0..=k1.0 {
+            for y in k0.1..=k1.1 {
+                let shifts: &[i64] = if lattice.cyclic_u { &[0, -1, 1] } else { &[0] };
+                for &wrap in shifts {
+                    let Some(list) = grid.get(&(x + wrap * columns, y)) else {
+                        continue;
+                    };
+                    for &k in list {
+                        if k <= i || !seen.insert((i, k, wrap)) {
+                            continue;
+                        }
+                        let o = &segs[k];
+                        if o.piece == s.piece && o.index.abs_diff(s.index) < 2 {
+                            continue;
+                        }
+                        let off = Vec3::new(wrap as f32 * period, 0.0, 0.0);
+                        let Some((ls, lo_, at)) = intersect(s.a, s.b, o.a - off, o.b - off) else {
+                            continue;
+                        };
+                        let s_in_front = ls > lo_;
+                        let Some((rule, s_front)) = expected(lattice, pattern, s, o) else {
+                            result.undecided += 1;
+                            continue;
+                        };
+                        result.decided += 1;
+                        let agree = s_in_front == s_front;
+                        result.agree += usize::from(agree);
+                        if rule == Rule::Interlock {
+                            result.interlock_decided += 1;
+                            result.interlock_agree += usize::from(agree);
+                            let (upper_front, lower) = if s.course > o.course {
+                                (s_in_front, o.course)
+                            } else {
+                                (!s_in_front, s.course)
+                            };
+                            let column = (at.x / cell.x).floor() as i64;
+                            let column = if lattice.cyclic_u {
+                                column.rem_euclid(columns)
+                            } else {
+                                column
+                            };
+                            let b = buckets.entry((lower, column)).or_default();
+                            b.0 += usize::from(upper_front);
+                            b.1 += 1;
+                        }
+                        if !agree && result.first_disagreement.is_none() {
+                            result.first_disagreement = Some(format!(
+                                "{:?} of stitch ({}, {}) and {:?} of stitch ({}, {}): \
+                                 expected the {} in front (depths {ls:.5} and {lo_:.5})",
+                                s.part,
+                                s.course,
+                                s.wale,
+                                o.part,
+                                o.course,
+                                o.wale,
+                                if s_front { "first" } else { "second" }
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    result.buckets = buckets.len();
+    result.buckets_half_front = buckets
+        .values()
+        .filter(|(front, all)| 4 * front >= *all && 4 * front <= 3 * all)
+        .count();
+    result
+}
+
+/// The centreline segments of `pieces`, each with its stitch and part of the loop.
+fn segments(
+    lattice: &Lattice,
+    pieces: &[YarnPiece],
+    lines: &[Vec<Vec3>],
+    samples_per_loop: usize,
+) -> Vec<Seg> {
+    let wales = lattice.wales;
+    let period = lattice.tile.x * wales as f32;
+    let mut segs = Vec::new();
+    for (pi, (pc, line)) in pieces.iter().zip(lines).enumerate() {
+        let n = line.len();
+        let count = if pc.closed { n } else { n.saturating_sub(1) };
+        for j in 0..count {
+            let t0 = pc.sample_t(j, samples_per_loop);
+            let t1 = if j + 1 == n {
+                (KEY_POINTS * pc.stitches) as f32
+            } else {
+                pc.sample_t(j + 1, samples_per_loop)
+            };
+            let tm = 0.5 * (t0 + t1);
+            let q = (tm as usize) % KEY_POINTS;
+            let mut stitch = tm as usize / KEY_POINTS;
+            let part = match q {
+                0 => Part::Sinker,
+                1 => Part::LeftLeg,
+                2 | 3 => Part::Head,
+                4 => Part::RightLeg,
+                _ => {
+                    stitch += 1;
+                    Part::Sinker
+                }
+            };
+            let mut a = line[j];
+            let mut b = line[(j + 1) % n];
+            if pc.closed && j + 1 == n {
+                b.x += period;
+            }
+            // Bring the segment's start into the domain's first period (cyclic u).
+            if lattice.cyclic_u {
+                let shift = (a.x / period).floor() * period;
+                a.x -= shift;
+                b.x -= shift;
+            }
+            // A sinker past the end of an open piece belongs to its last stitch.
+            let stitch = if pc.closed {
+                stitch % pc.stitches.max(1)
+            } else {
+                stitch.min(pc.stitches.saturating_sub(1))
+            };
+            segs.push(Seg {
+                a,
+                b,
+                piece: pi,
+                index: j,
+                course: pc.course,
+                wale: (pc.first_wale + stitch) % wales,
+                part,
+                float: pc.float_color.is_some(),
+                knot: pc.bobble,
+            });
+        }
+    }
+    segs
+}
+
+/// Where the (u, v) projections of segments `a0 a1` and `b0 b1` cross (not at an end): the
+/// depths (lambda) of each there, and the point in (u, v).
+fn intersect(a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> Option<(f32, f32, Vec2)> {
+    let (p, r) = (a0.truncate(), (a1 - a0).truncate());
+    let (q, s) = (b0.truncate(), (b1 - b0).truncate());
+    let denom = r.perp_dot(s);
+    if denom.abs() < 1e-12 {
+        return None;
+    }
+    let t = (q - p).perp_dot(s) / denom;
+    let u = (q - p).perp_dot(r) / denom;
+    let inside = |x: f32| (1e-4..=1.0 - 1e-4).contains(&x);
+    (inside(t) && inside(u)).then_some((
+        a0.z + t * (a1.z - a0.z),
+        b0.z + u * (b1.z - b0.z),
+        p + t * r,
+    ))
+}
+
+/// The stitch (course, wale) pulled through the loop of stitch (`course`, `wale`): in the
+/// column the loop lands in, one course up (two under a slipped stitch). `None` for a loop of
+/// the last course, which nothing holds.
+fn puller(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    course: usize,
+    wale: usize,
+) -> Option<(usize, usize)> {
+    let rise = usize::from(pattern.stitch(course, wale).rise > 0);
+    let c = course + 1 + rise;
+    if c >= lattice.courses {
+        return None;
+    }
+    let w = landing(lattice, pattern, course, wale).rem_euclid(lattice.wales as isize) as usize;
+    Some((c, w))
+}
+
+/// Whether `a` should be in front of `b` where they cross, and the rule that says so.
+fn expected(lattice: &Lattice, pattern: &StitchPattern, a: &Seg, b: &Seg) -> Option<(Rule, bool)> {
+    // A float of stranded colourwork runs behind the fabric, a bobble's ball in front of it.
+    if a.float || b.float {
+        return (a.float != b.float).then_some((Rule::Stitch, b.float));
+    }
+    if a.knot || b.knot {
+        return (a.knot != b.knot).then_some((Rule::Stitch, a.knot));
+    }
+    let cell = |s: &Seg| pattern.stitch(s.course, s.wale);
+    let (ca, cb) = (cell(a), cell(b));
+    let slip = |c: crate::pattern::Stitch| match c.form {
+        Form::Slip { yarn_front } => Some(yarn_front),
+        _ => None,
+    };
+    // A float past a slipped stitch and the loop it passes (not where the yarn goes in and
+    // out of the float, whose side the yarn is changing).
+    if a.course != b.course && a.part != Part::Sinker && b.part != Part::Sinker {
+        if let Some(front) = slip(ca) {
+            return Some((Rule::Stitch, front));
+        }
+        if let Some(front) = slip(cb) {
+            return Some((Rule::Stitch, !front));
+        }
+    }
+    if a.course != b.course {
+        let (upper, lower, a_upper) = if a.course > b.course {
+            (a, b, true)
+        } else {
+            (b, a, false)
+        };
+        if let Some(p) = puller(lattice, pattern, lower.course, lower.wale) {
+            if p.0 == upper.course {
+                let knit = pattern.stitch(p.0, p.1).face == Face::Knit;
+                let own = (upper.course, upper.wale) == p;
+                let upper_front = if upper.part == Part::Sinker {
+                    !knit
+                } else if own {
+                    cell(upper).face == Face::Knit
+                } else {
+                    knit
+                };
+                return Some((Rule::Interlock, upper_front == a_upper));
+            }
+        }
+        return None;
+    }
+    // Loops of one row crossing or stacked: the higher layer in front.
+    if a.wale != b.wale
+        && a.part != Part::Sinker
+        && b.part != Part::Sinker
+        && ca.land_layer != cb.land_layer
+        && ca.land_layer != 0
+        && cb.land_layer != 0
+    {
+        return Some((Rule::Stitch, ca.land_layer > cb.land_layer));
+    }
+    // The crossed legs of a twisted stitch.
+    let is_leg = |s: &Seg| matches!(s.part, Part::LeftLeg | Part::RightLeg);
+    if a.piece == b.piece
+        && a.wale == b.wale
+        && ca.form == Form::Twisted
+        && is_leg(a)
+        && is_leg(b)
+        && a.part != b.part
+    {
+        return Some((Rule::Stitch, a.part == Part::LeftLeg));
+    }
+    None
+}
