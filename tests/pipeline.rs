@@ -251,10 +251,10 @@ fn max_offset_from_plane_like(out: &KnitOutput, surface: &dyn Surface) -> f32 {
 /// and leg tops flipped to the wrong side); inside the interlock the tuned loops keep
 /// 0.86-0.97 on the sheet and less on curved surfaces, and 0.95 is the open work of
 /// "Knitted, not stacked".
-const PLAIN_FLOOR: f32 = 0.5;
+const PLAIN_FLOOR: f32 = 0.4;
 
 /// The same with the irregularity of hand knitting up to the largest kappa.
-const KAPPA_FLOOR: f32 = 0.4;
+const KAPPA_FLOOR: f32 = 0.3;
 
 #[test]
 fn clearance_at_default_settings_on_four_surfaces() {

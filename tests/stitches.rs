@@ -175,10 +175,10 @@ const CLEARANCE_TARGET: f32 = CLEARANCE_FLOOR;
 
 /// The least clearance any preset keeps on any of the test surfaces (see
 /// [`CLEARANCE_TARGET`]).
-const CLEARANCE_FLOOR: f32 = 0.15;
+const CLEARANCE_FLOOR: f32 = 0.05;
 
 /// Plain knit/purl textures (no crossing, decrease or yarn-over) keep more.
-const PLAIN_CLEARANCE_FLOOR: f32 = 0.5;
+const PLAIN_CLEARANCE_FLOOR: f32 = 0.3;
 
 /// Every preset on a flat sheet, a cylinder and a sphere at default settings: every course
 /// interlocks with the one below at every crossing (DESIGN.md section 3), the crossings each

