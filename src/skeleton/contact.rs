@@ -27,7 +27,7 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
-use super::crossings::crossing_order;
+use super::crossings::{decided_crossings, DecidedCrossing};
 use super::{sample_piece, yarn_pieces, NormalOffsets, SplineSampling, KEY_POINTS};
 use crate::lattice::Lattice;
 use crate::metrics::{clearance, close_pairs, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
@@ -39,6 +39,11 @@ use crate::surface::{PlaneSurface, Surface};
 /// sampling, the surface's curvature and the irregularity of hand knitting (the add-on's
 /// default kappa 0.005 took up to 0.04 diameters off feather and fan relieved to 1.02).
 pub const TARGET: f32 = 1.05;
+/// The depth, in diameters, by which the relief turns a crossing that is the wrong way
+/// round (or holds one that is nearly so) onto its rule's side: enough that the output's
+/// sampling, a curved surface and irregularity do not turn it back. Crossings clear of it are
+/// pushed apart as any close pair is, in the order they have.
+const CROSSING_MARGIN: f32 = 0.5;
 /// Rounds of pushing.
 const ROUNDS: usize = 96;
 /// Fraction of the summed pushes applied per round: several contacts on one key point add
@@ -210,8 +215,9 @@ impl Patch {
 }
 
 impl Patch {
-    /// Whether every crossing the pattern decides is the right way round on `lines`.
-    fn crosses_right(&self, pattern: &StitchPattern, lines: &[Vec<Vec3>]) -> bool {
+    /// Every crossing of `lines` (this patch's centrelines, unit yarn diameter) that the
+    /// pattern decides ([`decided_crossings`]).
+    fn crossings(&self, pattern: &StitchPattern, lines: &[Vec<Vec3>]) -> Vec<DecidedCrossing> {
         let uv: Vec<Vec<Vec3>> = lines
             .iter()
             .map(|l| {
@@ -220,9 +226,35 @@ impl Patch {
                     .collect()
             })
             .collect();
-        let order = crossing_order(&self.lattice, pattern, &self.pieces, &uv, SAMPLES);
-        order.agree == order.decided
+        decided_crossings(&self.lattice, pattern, &self.pieces, &uv, SAMPLES)
     }
+}
+
+/// How far in front of the other the yarn a crossing's rule puts in front is, in diameters
+/// (negative: the crossing is the wrong way round).
+fn separation(c: &DecidedCrossing) -> f32 {
+    if c.a_front {
+        c.depths.0 - c.depths.1
+    } else {
+        c.depths.1 - c.depths.0
+    }
+}
+
+/// Whether every crossing in `crossings` is the way round its rule says.
+fn all_right(crossings: &[DecidedCrossing]) -> bool {
+    crossings
+        .iter()
+        .all(|c| (c.depths.0 > c.depths.1) == c.a_front)
+}
+
+/// What a relief reached: the corrections (`None` where none improved on the start), the
+/// patch's minimum clearance in diameters and whether every crossing the pattern decides is
+/// the right way round, with them (without them, if `None`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Relieved<R> {
+    pub relief: Option<R>,
+    pub clearance: f32,
+    pub crosses_right: bool,
 }
 
 fn polylines(lines: &[Vec<Vec3>]) -> Vec<YarnPolyline<'_>> {
@@ -237,9 +269,8 @@ fn polylines(lines: &[Vec<Vec3>]) -> Vec<YarnPolyline<'_>> {
 
 /// Finds the relief of `pattern` knitted with stitches `width x height` yarn diameters and
 /// spline `tension`, rows of leaning loops `per_lean` ([`super::leaning_rows`]), on top of
-/// `offsets` (in diameters, without relief). Returns `None` where
-/// the patch already clears [`TARGET`], and the patch's minimum clearance with the relief
-/// (without it, if `None`).
+/// `offsets` (in diameters, without relief). No relief where the patch already clears
+/// [`TARGET`] with every crossing the right way round.
 pub fn relieve(
     pattern: &StitchPattern,
     width: f32,
@@ -247,7 +278,7 @@ pub fn relieve(
     tension: f32,
     per_lean: f32,
     offsets: &NormalOffsets,
-) -> (Option<ContactRelief>, f32) {
+) -> Relieved<ContactRelief> {
     let patch = Patch::new(pattern, width, height, per_lean);
     let sampling = SplineSampling {
         samples_per_loop: SAMPLES,
@@ -256,10 +287,17 @@ pub fn relieve(
     let (h, w) = (pattern.height(), pattern.width());
     let start = {
         let lines = patch.centrelines(pattern, offsets, &sampling);
-        min_clearance(&lines)
+        (
+            min_clearance(&lines),
+            all_right(&patch.crossings(pattern, &lines)),
+        )
     };
-    if start >= TARGET {
-        return (None, start);
+    if start.0 >= TARGET && start.1 {
+        return Relieved {
+            relief: None,
+            clearance: start.0,
+            crosses_right: true,
+        };
     }
     let (r0, c0) = patch.middle;
     let relief = |lambdas: &[[f32; KEY_POINTS]]| ContactRelief {
@@ -267,7 +305,7 @@ pub fn relieve(
         width: w,
         lambdas: lambdas.to_vec(),
     };
-    let (best, reached) = relax(
+    let reached = relax(
         &patch,
         pattern,
         &sampling,
@@ -279,7 +317,11 @@ pub fn relieve(
         },
         |lambdas| offsets.clone().with_relief(relief(lambdas)),
     );
-    (best.map(|b| relief(&b)), reached)
+    Relieved {
+        relief: reached.relief.map(|b| relief(&b)),
+        clearance: reached.clearance,
+        crosses_right: reached.crosses_right,
+    }
 }
 
 /// Finds corrections for one piece near the wales it knits straight (`offsets.straight`,
@@ -290,7 +332,8 @@ pub fn relieve(
 /// the wales within [`EDGE_WALES`] of a wale knitted straight are relieved as a pattern's
 /// middle repeat is ([`relieve`]), starting from the corrections they have, with
 /// [`MARGIN_WALES`] more round them standing still. `None` where the piece knits no wale
-/// straight, or where the strip clears [`TARGET`] already or nothing improved on it.
+/// straight, or where the strip clears [`TARGET`] with every crossing the right way round
+/// already, or nothing improved on it.
 pub fn relieve_edges(
     pattern: &StitchPattern,
     offsets: &NormalOffsets,
@@ -339,13 +382,16 @@ pub fn relieve_edges(
             &offsets.clone().with_edge_relief(edge(&start)),
             &sampling,
         );
-        min_clearance(&lines)
+        (
+            min_clearance(&lines),
+            all_right(&patch.crossings(pattern, &lines)),
+        )
     };
-    if before >= TARGET {
+    if before.0 >= TARGET && before.1 {
         return None;
     }
     let r0 = patch.middle.0;
-    let (best, _) = relax(
+    let reached = relax(
         &patch,
         pattern,
         &sampling,
@@ -358,7 +404,7 @@ pub fn relieve_edges(
         },
         |lambdas| offsets.clone().with_edge_relief(edge(lambdas)),
     );
-    best.map(|b| edge(&b))
+    reached.relief.map(|b| edge(&b))
 }
 
 /// The minimum clearance of `lines`, in diameters (unit yarn diameter).
@@ -373,22 +419,30 @@ fn min_clearance(lines: &[Vec<Vec3>]) -> f32 {
 }
 
 /// Pushes yarns on `patch` apart (see the module documentation): the corrections in
-/// `start` (one per cell, in diameters), where `start_clearance` is the patch's clearance
-/// with them, move by the pushes on the key points that `cell_of(course, wale)` maps to a
-/// cell; `offsets_with(cells)` gives offsets holding a set of corrections. Returns the best
-/// corrections found and the clearance they reach, never ones that turn a crossing the
-/// wrong way round; `None` (and `start_clearance`) where nothing improved on the start.
+/// `start` (one per cell, in diameters), with which the patch has clearance `start.0` and
+/// crosses right (`start.1`), move by the pushes on the key points that
+/// `cell_of(course, wale)` maps to a cell; `offsets_with(cells)` gives offsets holding a set
+/// of corrections.
+///
+/// Every crossing the pattern decides that is the wrong way round, or nearly, is pushed
+/// towards the side its rule gives until the yarns there stand [`CROSSING_MARGIN`] apart.
+/// Other close pairs are pushed apart in the order they have. The best
+/// corrections found win: crossing right first, then clearance. Returns them (`None` where
+/// nothing improved on the start), with the clearance they reach and whether they cross
+/// right.
 fn relax(
     patch: &Patch,
     pattern: &StitchPattern,
     sampling: &SplineSampling,
     start: Vec<[f32; KEY_POINTS]>,
-    start_clearance: f32,
+    start_state: (f32, bool),
     cell_of: impl Fn(usize, usize) -> Option<usize>,
     offsets_with: impl Fn(&[[f32; KEY_POINTS]]) -> NormalOffsets,
-) -> (Option<Vec<[f32; KEY_POINTS]>>, f32) {
+) -> Relieved<Vec<[f32; KEY_POINTS]>> {
     let mut cells = start;
-    let mut best: (f32, Option<Vec<[f32; KEY_POINTS]>>) = (start_clearance, None);
+    // (crosses right, clearance): crossing right first.
+    let better = |a: (f32, bool), b: (f32, bool)| (a.1, a.0) > (b.1, b.0);
+    let mut best: ((f32, bool), Option<Vec<[f32; KEY_POINTS]>>) = (start_state, None);
     for _ in 0..ROUNDS {
         let current = offsets_with(&cells);
         let lines = patch.centrelines(pattern, &current, sampling);
@@ -397,16 +451,18 @@ fn relax(
         else {
             break;
         };
+        let crossings = patch.crossings(pattern, &lines);
+        let right = all_right(&crossings);
         // The clearance, where it is under the target (`clearance` would find the same).
         let found = pairs.iter().map(|p| p.distance).fold(TARGET, f32::min);
-        // A relief that turns a crossing the wrong way round is never kept.
-        if found > best.0 && patch.crosses_right(pattern, &lines) {
-            best = (found, Some(cells.clone()));
+        if better((found, right), best.0) {
+            best = ((found, right), Some(cells.clone()));
         }
-        if pairs.is_empty() || found >= TARGET {
+        let held = crossings.iter().all(|c| separation(c) >= CROSSING_MARGIN);
+        if right && held && (pairs.is_empty() || found >= TARGET) {
             break;
         }
-        // Segment number -> (piece, first point).
+        // Segment number -> (piece, first point), and back.
         let mut first = Vec::with_capacity(lines.len() + 1);
         first.push(0usize);
         for l in &lines {
@@ -417,7 +473,10 @@ fn relax(
             (piece, seg - first[piece])
         };
         let mut push = vec![[0.0f32; KEY_POINTS]; cells.len()];
-        let mut add = |piece: usize, sample: usize, amount: f32| {
+        // Pushes that turn (or hold) a crossing: where a key point has one, it moves by that
+        // alone, whatever the close pairs round it ask (they would hold it where it is).
+        let mut turn = vec![[0.0f32; KEY_POINTS]; cells.len()];
+        let add = |into: &mut Vec<[f32; KEY_POINTS]>, piece: usize, sample: usize, amount: f32| {
             let pc = &patch.pieces[piece];
             let t = pc.sample_t(sample, SAMPLES);
             let k = t.floor();
@@ -429,11 +488,35 @@ fn relax(
                 }
                 let (course, wale) = (pc.course, pc.first_wale + kp / KEY_POINTS);
                 if let Some(cell) = cell_of(course, wale) {
-                    push[cell][kp % KEY_POINTS] += weight * amount;
+                    into[cell][kp % KEY_POINTS] += weight * amount;
                 }
             }
         };
+        // The segments of each decided crossing and their neighbours: a close pair there is
+        // pushed by the crossing's rule, not by the order it happens to have.
+        let mut decided = std::collections::HashSet::new();
+        for c in &crossings {
+            let need = CROSSING_MARGIN - separation(c);
+            if need <= 0.0 {
+                continue;
+            }
+            let (sa, sb) = (first[c.a.0] + c.a.1, first[c.b.0] + c.b.1);
+            for da in 0..3 {
+                for db in 0..3 {
+                    let (x, y) = ((sa + da).saturating_sub(1), (sb + db).saturating_sub(1));
+                    decided.insert((x.min(y), x.max(y)));
+                }
+            }
+            let side = if c.a_front { 0.5 } else { -0.5 };
+            for ((piece, k, s), sign) in [(c.a, side), (c.b, -side)] {
+                add(&mut turn, piece, k, (1.0 - s) * sign * need);
+                add(&mut turn, piece, k + 1, s * sign * need);
+            }
+        }
         for p in &pairs {
+            if decided.contains(&(p.a.min(p.b), p.a.max(p.b))) {
+                continue;
+            }
             let (pa, ka) = locate(p.a);
             let (pb, kb) = locate(p.b);
             let (la, lb) = (&lines[pa], &lines[pb]);
@@ -448,20 +531,28 @@ fn relax(
             }
             let side = if v.z >= 0.0 { 0.5 } else { -0.5 };
             for (piece, k, s, sign) in [(pa, ka, p.s, side), (pb, kb, p.t, -side)] {
-                add(piece, k, (1.0 - s) * sign * need);
-                add(piece, k + 1, s * sign * need);
+                add(&mut push, piece, k, (1.0 - s) * sign * need);
+                add(&mut push, piece, k + 1, s * sign * need);
             }
         }
-        for (cell, p) in cells.iter_mut().zip(&push) {
-            for (x, d) in cell.iter_mut().zip(p) {
+        for ((cell, p), t) in cells.iter_mut().zip(&push).zip(&turn) {
+            for ((x, d), e) in cell.iter_mut().zip(p).zip(t) {
+                let d = if *e != 0.0 { *e } else { *d };
                 *x = (*x + (RATE * d).clamp(-STEP, STEP)).clamp(-LIMIT, LIMIT);
             }
         }
     }
     let lines = patch.centrelines(pattern, &offsets_with(&cells), sampling);
-    let last = min_clearance(&lines);
-    if last > best.0 && patch.crosses_right(pattern, &lines) {
+    let last = (
+        min_clearance(&lines),
+        all_right(&patch.crossings(pattern, &lines)),
+    );
+    if better(last, best.0) {
         best = (last, Some(cells));
     }
-    (best.1, best.0)
+    Relieved {
+        relief: best.1,
+        clearance: best.0 .0,
+        crosses_right: best.0 .1,
+    }
 }

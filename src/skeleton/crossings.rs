@@ -116,16 +116,40 @@ enum Rule {
     Stitch,
 }
 
-/// Measures the crossing order of `pieces`, whose centrelines in (u, v, lambda) are
-/// `lines[i]` (as [`crate::skeleton::sample_piece_uv`] gives them, `samples_per_loop` per
-/// stitch).
-pub fn crossing_order(
+/// One crossing a rule decides: where it is on each yarn and which yarn the rule puts in
+/// front. A yarn's place is its piece, the index of its centreline segment (sample `index`
+/// to sample `index + 1` of the piece's line) and the fraction along that segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DecidedCrossing {
+    pub a: (usize, usize, f32),
+    pub b: (usize, usize, f32),
+    /// Whether the rule puts yarn `a` in front.
+    pub a_front: bool,
+    /// The depths (lambda) of `a` and `b` where they cross.
+    pub depths: (f32, f32),
+}
+
+/// A crossing found: the two segments, where along each, their depths, where in (u, v), and
+/// the rule that decides it (`None`: undecided).
+struct Found<'a> {
+    s: &'a Seg,
+    o: &'a Seg,
+    along: (f32, f32),
+    depths: (f32, f32),
+    at: Vec2,
+    expected: Option<(Rule, bool)>,
+}
+
+/// Calls `visit` on every crossing of the (u, v) projections of `pieces`' centrelines
+/// `lines` (in (u, v, lambda), `samples_per_loop` per stitch).
+fn for_each_crossing(
     lattice: &Lattice,
     pattern: &StitchPattern,
     pieces: &[YarnPiece],
     lines: &[Vec<Vec3>],
     samples_per_loop: usize,
-) -> CrossingOrder {
+    mut visit: impl FnMut(Found),
+) {
     let wales = lattice.wales;
     let period = lattice.tile.x * wales as f32;
     let segs = segments(lattice, pieces, lines, samples_per_loop);
@@ -147,10 +171,6 @@ pub fn crossing_order(
         }
     }
     let columns = (period / cell.x).round() as i64;
-    let mut result = CrossingOrder::default();
-    // Interlock crossings per (lower course, column): (upper in front, all).
-    let mut buckets: std::collections::BTreeMap<(usize, i64), (usize, usize)> =
-        std::collections::BTreeMap::new();
     let mut seen = std::collections::HashSet::new();
     for (i, s) in segs.iter().enumerate() {
         let (lo, hi) = (
@@ -174,53 +194,108 @@ pub fn crossing_order(
                             continue;
                         }
                         let off = Vec3::new(wrap as f32 * period, 0.0, 0.0);
-                        let Some((ls, lo_, at)) = intersect(s.a, s.b, o.a - off, o.b - off) else {
+                        let Some((ts, to, ls, lo_, at)) = intersect(s.a, s.b, o.a - off, o.b - off)
+                        else {
                             continue;
                         };
-                        let s_in_front = ls > lo_;
-                        let Some((rule, s_front)) = expected(lattice, pattern, s, o) else {
-                            result.undecided += 1;
-                            continue;
-                        };
-                        result.decided += 1;
-                        let agree = s_in_front == s_front;
-                        result.agree += usize::from(agree);
-                        if rule == Rule::Interlock {
-                            result.interlock_decided += 1;
-                            result.interlock_agree += usize::from(agree);
-                            let (upper_front, lower) = if s.course > o.course {
-                                (s_in_front, o.course)
-                            } else {
-                                (!s_in_front, s.course)
-                            };
-                            let column = (at.x / cell.x).floor() as i64;
-                            let column = if lattice.cyclic_u {
-                                column.rem_euclid(columns)
-                            } else {
-                                column
-                            };
-                            let b = buckets.entry((lower, column)).or_default();
-                            b.0 += usize::from(upper_front);
-                            b.1 += 1;
-                        }
-                        if !agree && result.first_disagreement.is_none() {
-                            result.first_disagreement = Some(format!(
-                                "{:?} of stitch ({}, {}) and {:?} of stitch ({}, {}): \
-                                 expected the {} in front (depths {ls:.5} and {lo_:.5})",
-                                s.part,
-                                s.course,
-                                s.wale,
-                                o.part,
-                                o.course,
-                                o.wale,
-                                if s_front { "first" } else { "second" }
-                            ));
-                        }
+                        visit(Found {
+                            s,
+                            o,
+                            along: (ts, to),
+                            depths: (ls, lo_),
+                            at,
+                            expected: expected(lattice, pattern, s, o),
+                        });
                     }
                 }
             }
         }
     }
+}
+
+/// Every crossing of `pieces` (centrelines `lines` in (u, v, lambda), `samples_per_loop` per
+/// stitch) that a rule decides, with the side the rule puts each yarn on.
+pub fn decided_crossings(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    pieces: &[YarnPiece],
+    lines: &[Vec<Vec3>],
+    samples_per_loop: usize,
+) -> Vec<DecidedCrossing> {
+    let mut out = Vec::new();
+    for_each_crossing(lattice, pattern, pieces, lines, samples_per_loop, |f| {
+        if let Some((_, a_front)) = f.expected {
+            out.push(DecidedCrossing {
+                a: (f.s.piece, f.s.index, f.along.0),
+                b: (f.o.piece, f.o.index, f.along.1),
+                a_front,
+                depths: f.depths,
+            });
+        }
+    });
+    out
+}
+
+/// Measures the crossing order of `pieces`, whose centrelines in (u, v, lambda) are
+/// `lines[i]` (as [`crate::skeleton::sample_piece_uv`] gives them, `samples_per_loop` per
+/// stitch).
+pub fn crossing_order(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    pieces: &[YarnPiece],
+    lines: &[Vec<Vec3>],
+    samples_per_loop: usize,
+) -> CrossingOrder {
+    let period = lattice.tile.x * lattice.wales as f32;
+    let cell = lattice.tile;
+    let columns = (period / cell.x).round() as i64;
+    let mut result = CrossingOrder::default();
+    // Interlock crossings per (lower course, column): (upper in front, all).
+    let mut buckets: std::collections::BTreeMap<(usize, i64), (usize, usize)> =
+        std::collections::BTreeMap::new();
+    for_each_crossing(lattice, pattern, pieces, lines, samples_per_loop, |f| {
+        let (s, o, at) = (f.s, f.o, f.at);
+        let (ls, lo_) = f.depths;
+        let s_in_front = ls > lo_;
+        let Some((rule, s_front)) = f.expected else {
+            result.undecided += 1;
+            return;
+        };
+        result.decided += 1;
+        let agree = s_in_front == s_front;
+        result.agree += usize::from(agree);
+        if rule == Rule::Interlock {
+            result.interlock_decided += 1;
+            result.interlock_agree += usize::from(agree);
+            let (upper_front, lower) = if s.course > o.course {
+                (s_in_front, o.course)
+            } else {
+                (!s_in_front, s.course)
+            };
+            let column = (at.x / cell.x).floor() as i64;
+            let column = if lattice.cyclic_u {
+                column.rem_euclid(columns)
+            } else {
+                column
+            };
+            let b = buckets.entry((lower, column)).or_default();
+            b.0 += usize::from(upper_front);
+            b.1 += 1;
+        }
+        if !agree && result.first_disagreement.is_none() {
+            result.first_disagreement = Some(format!(
+                "{:?} of stitch ({}, {}) and {:?} of stitch ({}, {}): \
+                 expected the {} in front (depths {ls:.5} and {lo_:.5})",
+                s.part,
+                s.course,
+                s.wale,
+                o.part,
+                o.course,
+                o.wale,
+                if s_front { "first" } else { "second" }
+            ));
+        }
+    });
     result.buckets = buckets.len();
     result.buckets_half_front = buckets
         .values()
@@ -296,8 +371,8 @@ fn segments(
 }
 
 /// Where the (u, v) projections of segments `a0 a1` and `b0 b1` cross (not at an end): the
-/// depths (lambda) of each there, and the point in (u, v).
-fn intersect(a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> Option<(f32, f32, Vec2)> {
+/// fraction along each, the depths (lambda) of each there, and the point in (u, v).
+fn intersect(a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> Option<(f32, f32, f32, f32, Vec2)> {
     let (p, r) = (a0.truncate(), (a1 - a0).truncate());
     let (q, s) = (b0.truncate(), (b1 - b0).truncate());
     let denom = r.perp_dot(s);
@@ -308,6 +383,8 @@ fn intersect(a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> Option<(f32, f32, Vec2)>
     let u = (q - p).perp_dot(r) / denom;
     let inside = |x: f32| (1e-4..=1.0 - 1e-4).contains(&x);
     (inside(t) && inside(u)).then_some((
+        t,
+        u,
         a0.z + t * (a1.z - a0.z),
         b0.z + u * (b1.z - b0.z),
         p + t * r,

@@ -54,6 +54,9 @@ pub struct Tuned {
     /// Height per column of lean of the rows where loops lean, in stitch widths
     /// ([`super::leaning_rows::ROOM_PER_LEAN`]): the one that cleared best.
     pub per_lean: f32,
+    /// Whether every crossing the pattern decides is the right way round on the patch
+    /// ([`super::crossings`]): a tuning that crosses right beats any that does not.
+    pub crosses_right: bool,
 }
 
 fn cache() -> &'static Mutex<HashMap<Key, Tuned>> {
@@ -115,14 +118,15 @@ fn straight(key: Key) -> NormalOffsets {
         relief: None,
         ..tuned.offsets
     };
-    let (relief, _) = contact::relieve(
+    let relief = contact::relieve(
         &key.pattern.straightened(),
         key.width as f32 * Q_RATIO,
         key.height as f32 * Q_RATIO,
         key.tension as f32 * Q_TENSION,
         tuned.per_lean,
         &base,
-    );
+    )
+    .relief;
     let o = match relief {
         Some(r) => base.with_relief(r),
         None => base,
@@ -324,15 +328,17 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
     best.unwrap_or_else(|| untuned(super::leaning_rows::ROOM_PER_LEAN[0]))
 }
 
-/// Keeps `t` in `best` if it clears more; whether `best` now clears `enough`.
+/// Keeps `t` in `best` if it crosses right where `best` does not, or clears more; whether
+/// `best` now crosses right and clears `enough`.
 fn keep_best(best: &mut Option<Tuned>, t: Tuned, enough: f32) -> bool {
     if best
         .as_ref()
-        .is_none_or(|b| t.clearance_min > b.clearance_min)
+        .is_none_or(|b| (t.crosses_right, t.clearance_min) > (b.crosses_right, b.clearance_min))
     {
         *best = Some(t);
     }
-    best.as_ref().is_some_and(|b| b.clearance_min >= enough)
+    best.as_ref()
+        .is_some_and(|b| b.crosses_right && b.clearance_min >= enough)
 }
 
 /// Offsets of half a diameter everywhere: what a search that found nothing returns.
@@ -348,6 +354,7 @@ fn untuned(per_lean: f32) -> Tuned {
         },
         clearance_min: 0.0,
         per_lean,
+        crosses_right: false,
     }
 }
 
@@ -388,10 +395,10 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
         // leg top sits on the surface leaves its interlock to the spline's overshoot.
         let (min, p01, wrong) =
             patch_measure(pattern, width, height, tension, per_lean, &offsets, true);
-        (min + 0.1 * p01 - 100.0 * wrong as f32, min)
+        (min + 0.1 * p01 - 100.0 * wrong as f32, (min, wrong == 0.0))
     };
     // Every start's optimum, best first.
-    let mut found: Vec<(f32, f32, [f32; VARIABLES])> = Vec::new();
+    let mut found: Vec<(f32, (f32, bool), [f32; VARIABLES])> = Vec::new();
     for start in START_POINTS {
         let paper = LoopShape::PAPER.to_array();
         let mut x: [f32; VARIABLES] = std::array::from_fn(|i| {
@@ -434,38 +441,41 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
     found.dedup_by(|a, b| a.2 == b.2);
     let free = shape_coefficients_used(pattern);
     let mut result: Option<Tuned> = None;
-    for (_, clearance_min, x) in found {
+    for (_, (clearance_min, crosses_right), x) in found {
         let offsets = offsets_of(&x);
         let tuned = if free.is_empty() || !TUNE_SHAPE {
             Tuned {
                 offsets,
                 clearance_min,
                 per_lean,
+                crosses_right,
             }
         } else {
             tune_shape(pattern, width, height, tension, per_lean, offsets, &free)
         };
-        if tuned.clearance_min >= contact::TARGET {
+        if tuned.crosses_right && tuned.clearance_min >= contact::TARGET {
             // Clear already: no relief, and no other start can do better where it matters.
             if result
                 .as_ref()
-                .is_none_or(|r| r.clearance_min < contact::TARGET)
+                .is_none_or(|r| !r.crosses_right || r.clearance_min < contact::TARGET)
             {
                 result = Some(tuned);
             }
             break;
         }
-        // Where one coefficient per kind of key point cannot keep the yarns apart, local
-        // corrections do. The best optimum unrelieved is not always the one that relieves
-        // best: the next is tried while the relief falls short of the goal.
+        // Where one coefficient per kind of key point cannot keep the yarns apart, or turn
+        // every crossing the way its stitch says, local corrections do. The best optimum
+        // unrelieved is not always the one that relieves best: the next is tried while the
+        // relief falls short of the goal.
         let rr = contact::relieve(pattern, width, height, tension, per_lean, &tuned.offsets);
-        let outcome = match rr {
-            (Some(relief), reached) if reached > tuned.clearance_min => Tuned {
+        let outcome = match rr.relief {
+            Some(relief) => Tuned {
                 offsets: tuned.offsets.with_relief(relief),
-                clearance_min: reached,
+                clearance_min: rr.clearance,
                 per_lean,
+                crosses_right: rr.crosses_right,
             },
-            _ => tuned,
+            None => tuned,
         };
         if keep_best(&mut result, outcome, GOAL) {
             break;
@@ -529,7 +539,7 @@ fn tune_shape(
     // Clearance, but never at the price of a crossing the wrong way round.
     let score = |o: &NormalOffsets| {
         let (min, p01, wrong) = patch_measure(pattern, width, height, tension, per_lean, o, true);
-        (min + 0.1 * p01 - 100.0 * wrong as f32, min)
+        (min + 0.1 * p01 - 100.0 * wrong as f32, (min, wrong == 0.0))
     };
     let (mut best, mut best_min) = score(&offsets);
     let mut step = 0.25f32;
@@ -558,8 +568,9 @@ fn tune_shape(
     }
     Tuned {
         offsets,
-        clearance_min: best_min,
+        clearance_min: best_min.0,
         per_lean,
+        crosses_right: best_min.1,
     }
 }
 
