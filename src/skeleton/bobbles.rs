@@ -48,8 +48,20 @@ pub fn bobble_pieces(lattice: &Lattice, built: &[bool], pattern: &StitchPattern)
     pieces
 }
 
-/// Key points of a bobble's ball in (u, v, lambda): [`TURNS`] turns of six points.
-pub fn bobble_key_points(lattice: &Lattice, piece: &YarnPiece, diameter: f32) -> Vec<Vec3> {
+/// Clearance of the ball's first turn in front of the yarn under it, in yarn diameters.
+pub const OVER_STITCH: f32 = 1.25;
+
+/// Key points of a bobble's ball in (u, v, lambda): [`TURNS`] turns of six points. The first
+/// turn runs [`FIRST_TURN`] diameters in front of the surface, or [`OVER_STITCH`] in front of
+/// `under` (the largest offset of the yarn under the ball, scene units) where that is
+/// further out.
+pub fn bobble_key_points(
+    lattice: &Lattice,
+    piece: &YarnPiece,
+    diameter: f32,
+    under: f32,
+) -> Vec<Vec3> {
+    let first = (FIRST_TURN * diameter).max(under + OVER_STITCH * diameter);
     let t = tile_at(lattice, piece.course, piece.first_wale as isize);
     let across = t.n2 - t.n3;
     let up = t.n0 - t.n3;
@@ -61,7 +73,7 @@ pub fn bobble_key_points(lattice: &Lattice, piece: &YarnPiece, diameter: f32) ->
             let a = std::f32::consts::TAU * j as f32 / KEY_POINTS as f32;
             let shrink = 1.0 - 0.5 * j as f32 / (TURNS * KEY_POINTS) as f32;
             let p = centre + shrink * (rx * a.cos() * across + ry * a.sin() * up);
-            let lambda = (FIRST_TURN + j as f32 / KEY_POINTS as f32) * diameter;
+            let lambda = first + j as f32 / KEY_POINTS as f32 * diameter;
             Vec3::new(p.x, p.y, lambda)
         })
         .collect()

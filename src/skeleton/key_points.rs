@@ -85,17 +85,3 @@ pub fn key_points(t: &Tile, s: &LoopShape) -> [Vec2; KEY_POINTS] {
         t.n3 + (1.0 - s.leg_bottom) * (t.n2 - t.n3),
     ]
 }
-
-/// The sinker k0 of a loop on a vertical knit/purl boundary (its left neighbour is of the other
-/// kind, the stitch below of its own): it does not dip, `k0 = n3`.
-///
-/// Between a knit and a purl column (a rib) the yarn goes straight from the front of the fabric to
-/// the back between the two needles instead of forming a sinker loop. With the paper's dip
-/// of 0.35 rows, the sinker reaches down to where both legs below are crossing the surface
-/// and must pass in front of one and behind the other at the same height: no choice of
-/// normal offsets then clears 0.8 yarn diameters in a 1x1 rib, where the straight crossing
-/// clears more than one. Where the stitch below is of the other kind too (seed stitch), the
-/// legs below do not cross the surface there and the paper's dip clears best.
-pub fn boundary_sinker(t: &Tile) -> Vec2 {
-    t.n3
-}

@@ -21,7 +21,7 @@ mod spline;
 pub mod stitch_shape;
 pub mod tuning;
 
-pub use key_points::{boundary_sinker, key_points, LoopShape, KEY_POINTS};
+pub use key_points::{key_points, LoopShape, KEY_POINTS};
 pub use offsets::{NormalOffsets, Shape, StraightWales, DEFAULT_SHAPE, SHAPE_COEFFICIENTS};
 pub use spline::CardinalSpline;
 pub use stitch_shape::stitch_key_points;
@@ -171,7 +171,31 @@ pub fn piece_key_points(
         return floats::float_key_points(lattice, piece, offsets.diameter);
     }
     if piece.bobble {
-        return bobbles::bobble_key_points(lattice, piece, offsets.diameter);
+        // The ball stands in front of the yarn under it, however far the stitch's offsets
+        // and relief bring that yarn forward: the stitch and its neighbours in its course and
+        // the next (the ball reaches up into that one).
+        let w = piece.first_wale;
+        let wales = [w.checked_sub(1), Some(w), Some(w + 1)];
+        let mut under = 0.0f32;
+        for course in [piece.course, piece.course + 1] {
+            if course >= lattice.courses {
+                continue;
+            }
+            for x in wales.into_iter().flatten() {
+                if !lattice.cyclic_u && x >= lattice.wales {
+                    continue;
+                }
+                let x = if lattice.cyclic_u && x >= lattice.wales {
+                    x - lattice.wales
+                } else {
+                    x
+                };
+                for p in stitch_key_points(lattice, pattern, offsets, course, x) {
+                    under = under.max(p.z);
+                }
+            }
+        }
+        return bobbles::bobble_key_points(lattice, piece, offsets.diameter, under);
     }
     let mut out = Vec::with_capacity(piece.stitches * KEY_POINTS);
     for j in 0..piece.stitches {
