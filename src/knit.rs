@@ -32,6 +32,9 @@ pub const DEFAULT_GAUGE: (f32, f32) = (20.0, 28.0);
 /// Default yarn radius as a fraction of the stitch width: a diameter of a fifth of a stitch
 /// (thinner yarn looks sparse; this is where the tuned offsets clear best).
 pub const DEFAULT_RADIUS_PER_STITCH_WIDTH: f32 = 0.1;
+/// Samples a loop at which [`PreparedKnit::crossing_order`] measures the skeleton's topology
+/// (at least): the tuning's and the contact relief's.
+pub const TOPOLOGY_SAMPLES: usize = 24;
 /// Default yarn colour (linear RGB): a warm oatmeal wool.
 pub const DEFAULT_YARN_COLOR: [f32; 3] = [0.55, 0.42, 0.30];
 pub use crate::gauge::MAX_STITCHES_PER_DIRECTION;
@@ -1110,22 +1113,46 @@ impl PreparedKnit {
     }
 
     /// The interlock-topology metric of this knit on `surface` (see
-    /// [`crate::skeleton::crossings::crossing_order`]).
+    /// [`crate::skeleton::crossings::crossing_order`]), measured on the skeleton's spline at
+    /// [`TOPOLOGY_SAMPLES`] samples a loop at least (as the tuning and the contact relief
+    /// see it), not on the output's possibly coarser polyline: where a head and a sinker run
+    /// side by side, a coarse chord grazes across the other yarn's projection and back, and
+    /// which of two such grazing "crossings" exist depends on the sampling, not the knit.
     pub fn crossing_order(
         &self,
         surface: &dyn Surface,
     ) -> Result<crate::skeleton::crossings::CrossingOrder> {
+        self.check_layout(surface)?;
+        let sampling = SplineSampling {
+            samples_per_loop: self.sampling.samples_per_loop.max(TOPOLOGY_SAMPLES),
+            ..self.sampling
+        };
         let lines: Vec<Vec<Vec3>> = self
-            .uv_centrelines(surface)?
-            .into_iter()
-            .map(|y| y.points)
+            .pieces
+            .par_iter()
+            .map(|pc| {
+                let n = pc.sample_count(sampling.samples_per_loop);
+                let mut points = vec![Vec3::ZERO; n];
+                let mut owner = vec![0u32; n];
+                sample_piece_uv(
+                    surface,
+                    &self.lattice,
+                    &self.pattern,
+                    &self.offsets,
+                    &sampling,
+                    pc,
+                    &mut points,
+                    &mut owner,
+                );
+                points
+            })
             .collect();
         Ok(crate::skeleton::crossings::crossing_order(
             &self.lattice,
             &self.pattern,
             &self.pieces,
             &lines,
-            self.sampling.samples_per_loop,
+            sampling.samples_per_loop,
         ))
     }
 
