@@ -1,5 +1,6 @@
 //! Interlock, clearance and cover of every preset on a flat sheet at the default gauge.
-//! `cargo run --release --example interlock_survey [radius_per_stitch_width] [preset...]`
+//! `cargo run --release --example interlock_survey [radius_per_stitch_width|default] [preset...]`
+//! (`default`: the yarn a knit gets when none is given, as the tests knit).
 use glam::{Vec2, Vec3};
 use knitwear::knit::{KnitParams, PreparedKnit};
 use knitwear::metrics::cover;
@@ -8,7 +9,11 @@ use knitwear::surface::PlaneSurface;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let ratio: f32 = args.first().map_or(0.1, |a| a.parse().unwrap());
+    let ratio: Option<f32> = match args.first().map(String::as_str) {
+        None => Some(0.1),
+        Some("default") => None,
+        Some(a) => Some(a.parse().expect("a radius per stitch width, or `default`")),
+    };
     let names: Vec<String> = if args.len() > 1 {
         args[1..].to_vec()
     } else {
@@ -25,7 +30,7 @@ fn main() {
         let pattern = StitchPattern::preset(&name).unwrap();
         let t = std::time::Instant::now();
         let p = KnitParams {
-            yarn_radius: Some(ratio * 0.005),
+            yarn_radius: ratio.map(|r| r * 0.005),
             measure_clearance: true,
             ..KnitParams::default()
         };
