@@ -26,6 +26,12 @@ def charts() -> ModuleType:
     return module
 
 
+#: Stockinette's clearance at the default yarn, interlocked (README, "Every course interlocks"):
+#: 0.948 on a sheet, 0.94 round a gentle cylinder. The earlier assertion of more than 1.0 was
+#: the stacked knit's figure (courses lying over each other like roof shingles).
+STOCKINETTE_FLOOR = 0.9
+
+
 def check(recs: list[dict], n: int) -> None:
     assert len(recs) == n
     for r in recs:
@@ -39,7 +45,7 @@ def test_curvature_clamps_on_a_thin_cylinder(charts: ModuleType) -> None:
     recs = charts.sweep_curvature([0.2, 5.0], courses=4)
     check(recs, 2)
     assert recs[0]["error"] is None and recs[0]["stitches_clamped"] > 0
-    assert recs[1]["stitches_clamped"] == 0 and recs[1]["clearance_min"] > 1.0
+    assert recs[1]["stitches_clamped"] == 0 and recs[1]["clearance_min"] > STOCKINETTE_FLOOR
 
 
 def test_kappa_beyond_the_maximum_is_refused(charts: ModuleType) -> None:
@@ -62,7 +68,7 @@ def test_stretch_refuses_fixed_counts_not_the_gauge(charts: ModuleType) -> None:
 def test_yarn_thicker_than_a_stitch_is_refused(charts: ModuleType) -> None:
     recs = charts.sweep_yarn([0.1, 0.55])
     check(recs, 2)
-    assert recs[0]["error"] is None and recs[0]["clearance_min"] > 1.0
+    assert recs[0]["error"] is None and recs[0]["clearance_min"] > STOCKINETTE_FLOOR
     assert recs[1]["error"] == "ParameterError"
 
 
