@@ -8,7 +8,9 @@
 //! the quantised inputs: the same on every machine, whatever the cache held before.
 
 use std::collections::HashMap;
-use std::sync::{Mutex, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
+
+use rayon::prelude::*;
 
 use glam::Vec3;
 
@@ -59,8 +61,13 @@ pub struct Tuned {
     pub crosses_right: bool,
 }
 
-fn cache() -> &'static Mutex<HashMap<Key, Tuned>> {
-    static CACHE: OnceLock<Mutex<HashMap<Key, Tuned>>> = OnceLock::new();
+/// One cell per key: a thread that asks for a key another thread is tuning waits for that
+/// result instead of tuning it again (the test suites knit the same pattern on several
+/// threads at once).
+type Cell = Arc<OnceLock<Tuned>>;
+
+fn cache() -> &'static Mutex<HashMap<Key, Cell>> {
+    static CACHE: OnceLock<Mutex<HashMap<Key, Cell>>> = OnceLock::new();
     CACHE.get_or_init(|| Mutex::new(HashMap::new()))
 }
 
@@ -204,22 +211,21 @@ fn key(
 
 /// The tuning for `key`, from the cache or tuned now (in diameters).
 fn tuned(key: Key) -> Tuned {
-    let cached = cache().lock().ok().and_then(|c| c.get(&key).cloned());
-    match cached {
-        Some(t) => t,
-        None => {
-            let t = tune(
-                &key.pattern,
-                key.width as f32 * Q_RATIO,
-                key.height as f32 * Q_RATIO,
-                key.tension as f32 * Q_TENSION,
-            );
-            if let Ok(mut c) = cache().lock() {
-                c.insert(key, t.clone());
-            }
-            t
-        }
-    }
+    let run = || {
+        tune(
+            &key.pattern,
+            key.width as f32 * Q_RATIO,
+            key.height as f32 * Q_RATIO,
+            key.tension as f32 * Q_TENSION,
+        )
+    };
+    // The map's lock is held only to find the key's cell, never while tuning.
+    let cell = match cache().lock() {
+        Ok(mut c) => c.entry(key.clone()).or_default().clone(),
+        // A poisoned map (a panic elsewhere while it was held): tune without caching.
+        Err(_) => return run(),
+    };
+    cell.get_or_init(run).clone()
 }
 
 /// Clearance (min, p01) in diameters of `pattern` on a flat patch with unit yarn diameter.
@@ -318,9 +324,14 @@ fn tune(pattern: &StitchPattern, width: f32, height: f32, tension: f32) -> Tuned
     } else {
         &super::leaning_rows::ROOM_PER_LEAN[..1]
     };
+    // Every height is tuned at once (each is a pure function of its inputs), then chosen in
+    // order as a sequential search would: the same result on any thread count.
+    let tunings: Vec<Tuned> = candidates
+        .par_iter()
+        .map(|&per_lean| tune_at(pattern, width, height, tension, per_lean))
+        .collect();
     let mut best: Option<Tuned> = None;
-    for &per_lean in candidates {
-        let t = tune_at(pattern, width, height, tension, per_lean);
+    for t in tunings {
         if keep_best(&mut best, t, ENOUGH) {
             break;
         }
@@ -397,9 +408,9 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
             patch_measure(pattern, width, height, tension, per_lean, &offsets, true);
         (min + 0.1 * p01 - 100.0 * wrong as f32, (min, wrong == 0.0))
     };
-    // Every start's optimum, best first.
-    let mut found: Vec<(f32, (f32, bool), [f32; VARIABLES])> = Vec::new();
-    for start in START_POINTS {
+    // Every start's optimum (searched in parallel, kept in the order of START_POINTS), best
+    // first.
+    let search = |start: &[f32; COEFFICIENTS]| {
         let paper = LoopShape::PAPER.to_array();
         let mut x: [f32; VARIABLES] = std::array::from_fn(|i| {
             if i < COEFFICIENTS {
@@ -433,27 +444,41 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
                 step *= 0.5;
             }
         }
-        found.push((best, best_min, x));
-    }
+        (best, best_min, x)
+    };
+    let mut found: Vec<(f32, (f32, bool), [f32; VARIABLES])> =
+        START_POINTS.par_iter().map(search).collect();
     // Stable: equal scores keep the order of START_POINTS.
     found.sort_by(|a, b| b.0.total_cmp(&a.0));
     // Starts that converge to one optimum relieve alike.
     found.dedup_by(|a, b| a.2 == b.2);
     let free = shape_coefficients_used(pattern);
+    // Each optimum, and its relief where it does not clear already, worked out in parallel;
+    // then chosen in order as a sequential search would.
+    let optima: Vec<(Tuned, Option<contact::Relieved<_>>)> = found
+        .into_par_iter()
+        .map(|(_, (clearance_min, crosses_right), x)| {
+            let offsets = offsets_of(&x);
+            let tuned = if free.is_empty() || !TUNE_SHAPE {
+                Tuned {
+                    offsets,
+                    clearance_min,
+                    per_lean,
+                    crosses_right,
+                }
+            } else {
+                tune_shape(pattern, width, height, tension, per_lean, offsets, &free)
+            };
+            let relieved =
+                (!(tuned.crosses_right && tuned.clearance_min >= contact::TARGET)).then(|| {
+                    contact::relieve(pattern, width, height, tension, per_lean, &tuned.offsets)
+                });
+            (tuned, relieved)
+        })
+        .collect();
     let mut result: Option<Tuned> = None;
-    for (_, (clearance_min, crosses_right), x) in found {
-        let offsets = offsets_of(&x);
-        let tuned = if free.is_empty() || !TUNE_SHAPE {
-            Tuned {
-                offsets,
-                clearance_min,
-                per_lean,
-                crosses_right,
-            }
-        } else {
-            tune_shape(pattern, width, height, tension, per_lean, offsets, &free)
-        };
-        if tuned.crosses_right && tuned.clearance_min >= contact::TARGET {
+    for (tuned, relieved) in optima {
+        let Some(rr) = relieved else {
             // Clear already: no relief, and no other start can do better where it matters.
             if result
                 .as_ref()
@@ -462,12 +487,11 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
                 result = Some(tuned);
             }
             break;
-        }
+        };
         // Where one coefficient per kind of key point cannot keep the yarns apart, or turn
         // every crossing the way its stitch says, local corrections do. The best optimum
         // unrelieved is not always the one that relieves best: the next is tried while the
         // relief falls short of the goal.
-        let rr = contact::relieve(pattern, width, height, tension, per_lean, &tuned.offsets);
         let outcome = match rr.relief {
             Some(relief) => Tuned {
                 offsets: tuned.offsets.with_relief(relief),
