@@ -748,8 +748,5 @@ fn key(c: [i64; 3]) -> u64 {
 /// SplitMix64 finaliser: spreads neighbouring cells over the table.
 #[inline]
 fn hash(k: u64) -> usize {
-    let mut z = k.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    (z ^ (z >> 31)) as usize
+    crate::rng::splitmix64(k) as usize
 }

@@ -115,12 +115,7 @@ fn unit24(bits: u64) -> f32 {
 
 /// A stable 64-bit mix of the seed and a stitch's (course, wale) (SplitMix64 finaliser).
 pub fn stitch_seed(seed: u64, course: usize, wale: usize) -> u64 {
-    let mut z = seed
-        ^ (course as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        ^ (wale as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
+    crate::rng::cell_seed(seed, course, wale)
 }
 
 /// Tangent directions (any length) for the first and last ring of a bundle, where the

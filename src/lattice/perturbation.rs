@@ -122,20 +122,12 @@ pub const LOCALITY_RADIUS: usize = 2 * LEVEL0_SPACING;
 /// (per-stitch shading, pile noise): "lattice!" in ASCII.
 const DOMAIN_TAG: u64 = 0x6C61_7474_6963_6521;
 
-/// SplitMix64's step: add the golden gamma, then the finaliser.
-fn splitmix64(z: u64) -> u64 {
-    let z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    let z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
 /// The random value of one component of one level-grid node: uniform in `[-1, 1)`, a pure
 /// function of its arguments (no state, no platform dependence).
 pub fn node_random(seed: u64, level: usize, iu: usize, iv: usize, component: usize) -> f64 {
-    let mut z = splitmix64(seed ^ DOMAIN_TAG);
+    let mut z = crate::rng::splitmix64(seed ^ DOMAIN_TAG);
     for word in [level as u64, iu as u64, iv as u64, component as u64] {
-        z = splitmix64(z ^ word);
+        z = crate::rng::splitmix64(z ^ word);
     }
     // 53 random bits -> [0, 2) exactly representable -> [-1, 1).
     (z >> 11) as f64 * (1.0 / (1u64 << 52) as f64) - 1.0

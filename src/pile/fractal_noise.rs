@@ -160,12 +160,7 @@ impl NoiseField {
 /// The project's seed hash (splitmix64 finaliser of the seed and two indices), salted for the
 /// noise. Same inputs, same 64 bits, on every machine.
 pub fn texel_seed(seed: u64, x: usize, y: usize) -> u64 {
-    let mut z = (seed ^ NOISE_SALT)
-        ^ (y as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
-        ^ (x as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
+    crate::rng::cell_seed(seed ^ NOISE_SALT, y, x)
 }
 
 /// The base noise's angles `(theta, phi)` of texel (x, y), radians.
