@@ -10,6 +10,7 @@ echo "== lint"
 cargo fmt --check
 cargo clippy --quiet --all-targets -- -D warnings
 .venv/bin/ruff check python blender_addon tests examples benchmarks scripts
+.venv/bin/python scripts/check_layers.py
 
 echo "== cargo test"
 cargo test --quiet

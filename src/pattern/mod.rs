@@ -7,6 +7,7 @@
 
 mod chart;
 mod color;
+mod color_image;
 pub mod instruction;
 mod knitspeak;
 mod presets;
@@ -15,6 +16,7 @@ mod stitch;
 
 pub use chart::parse_chart;
 pub use color::ColorPattern;
+pub use color_image::ColorImage;
 pub use instruction::Instruction;
 pub(crate) use knitspeak::lcm;
 pub use knitspeak::{looks_like_knitspeak, parse_knitspeak};

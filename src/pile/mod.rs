@@ -36,7 +36,7 @@ pub use slices::{horizontal_for, SliceCounts, View};
 
 use crate::budget::MAX_MESH_ELEMENTS;
 use crate::error::{KnitError, Result};
-use crate::knit::ColorImage;
+use crate::pattern::ColorImage;
 use crate::pattern::ColorPattern;
 
 /// Plush gauge used when neither counts nor a gauge are given: 48 wales and 64 courses per

@@ -14,7 +14,7 @@ use super::{
     flat, guarded, rows, to_py, AnySurface, InternalError, ParameterError, PyColorPattern,
     PyGridSurface, PyMeshSurface, SurfaceError,
 };
-use crate::knit::ColorImage;
+use crate::pattern::ColorImage;
 use crate::pile::fractal_noise::{fractal_noise as core_noise, NoiseParams};
 use crate::pile::{
     plush as core_plush, Nominal, PileBuffers, PileColors, PileField, PileParams, PileStats,

@@ -28,6 +28,8 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::crossings::{decided_crossings, DecidedCrossing};
+use super::relief::NO_CELL;
+pub use super::relief::{ContactRelief, EdgeRelief};
 use super::{sample_piece, yarn_pieces, NormalOffsets, SplineSampling, KEY_POINTS};
 use crate::lattice::Lattice;
 use crate::metrics::{clearance, close_pairs, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
@@ -64,53 +66,6 @@ const EDGE_WALES: usize = 3;
 const MARGIN_COURSES: usize = 2;
 /// Samples per loop of the patch's centrelines.
 const SAMPLES: usize = 24;
-
-/// Normal-offset corrections per pattern cell and key point, in yarn diameters.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ContactRelief {
-    height: usize,
-    width: usize,
-    /// Row-major, `height * width` cells.
-    lambdas: Vec<[f32; KEY_POINTS]>,
-}
-
-impl ContactRelief {
-    /// The corrections of stitch (`course`, `wale`) of a fabric knitted with the pattern.
-    pub fn at(&self, course: usize, wale: usize) -> [f32; KEY_POINTS] {
-        self.lambdas[(course % self.height) * self.width + wale % self.width]
-    }
-
-    /// The largest correction, in diameters.
-    pub fn largest(&self) -> f32 {
-        self.lambdas
-            .iter()
-            .flatten()
-            .fold(0.0f32, |m, x| m.max(x.abs()))
-    }
-}
-
-/// Corrections made for one piece of fabric near the wales it knits straight (where an edge
-/// cuts a crossing or a decrease: [`super::StraightWales`]), per pattern row and wale, in
-/// yarn diameters: there, wales knitted straight meet wales knitted as the pattern says,
-/// and neither the pattern's relief nor the straightened pattern's was made for that.
-#[derive(Debug, Clone, PartialEq)]
-pub struct EdgeRelief {
-    rows: usize,
-    /// Per wale of the piece: its first cell in `lambdas`, or `NO_CELL`.
-    first_cell: Vec<u32>,
-    /// `rows` cells per wale that has any.
-    lambdas: Vec<[f32; KEY_POINTS]>,
-}
-
-const NO_CELL: u32 = u32::MAX;
-
-impl EdgeRelief {
-    /// The corrections of stitch (`course`, `wale`), if made for its wale.
-    pub fn at(&self, course: usize, wale: usize) -> Option<[f32; KEY_POINTS]> {
-        let first = *self.first_cell.get(wale)?;
-        (first != NO_CELL).then(|| self.lambdas[first as usize + course % self.rows])
-    }
-}
 
 /// A flat patch of the pattern with unit yarn diameter, stitches `width x height`.
 struct Patch {

@@ -16,6 +16,7 @@ pub mod floats;
 mod key_points;
 pub mod leaning_rows;
 mod offsets;
+pub mod relief;
 pub mod sampling_density;
 mod spline;
 pub mod stitch_shape;

@@ -19,7 +19,7 @@
 
 use std::sync::Arc;
 
-use super::contact::{ContactRelief, EdgeRelief};
+use super::relief::{ContactRelief, EdgeRelief};
 use super::{LoopShape, KEY_POINTS};
 use crate::pattern::Stitch;
 
