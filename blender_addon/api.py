@@ -16,7 +16,7 @@ subclass with a message fit for a report, and leaves the blend file as it was.
 """
 
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -25,11 +25,11 @@ import knitwear
 import numpy as np
 from mathutils import Matrix
 
-from . import material, mesh_build, sampling, source_link
-from .properties import CUSTOM_PATTERN, FILE_PATTERN, KNIT_SETTINGS, MAX_COLORS
+from . import core_inputs, material, mesh_build, sampling, source_link, texture
+from .properties import KNIT_SETTINGS
 
 #: Called with the fraction done (0..1) between the steps of a knit.
-Progress = Callable[[float], None]
+Progress = core_inputs.Progress
 
 #: Below this many diameters of clearance on a flat patch loops overlap visibly (DESIGN.md
 #: section 7): the user is warned. With every course interlocked the tuned loops of the
@@ -37,9 +37,6 @@ Progress = Callable[[float], None]
 #: below it (their loop shapes are the open work of "Knitted, not stacked"), and the
 #: warning says so rather than hiding it.
 MIN_CLEARANCE = 0.5
-
-#: The core reads a gauge as stitches per this many scene units (10 cm in metres).
-_GAUGE_LENGTH = 0.1
 
 #: Custom property of a knit object: its stitch levels (one byte per stitch, row-major) when
 #: it was knitted with auto detail, pinned so every frame rebuilds the same topology.
@@ -94,153 +91,6 @@ def settings_from(obj: bpy.types.Object) -> dict[str, Any]:
     return KNIT_SETTINGS.read(obj.knitwear)
 
 
-_complete = KNIT_SETTINGS.complete
-
-
-def _chart_text(text: str) -> str:
-    # A one-line UI field cannot hold line breaks, so ';' separates rows too.
-    rows = [row.strip() for row in text.replace(";", "\n").splitlines()]
-    return "\n".join(row for row in rows if row)
-
-
-def _pattern(settings: Mapping[str, Any]) -> "knitwear.Pattern":
-    if settings["pattern"] == CUSTOM_PATTERN:
-        text = settings["pattern_chart"]
-        # Knitspeak uses ';' inside its rows, so it is read as written; a chart's rows may be
-        # separated with ';' in the one-line field.
-        if knitwear.Pattern.looks_like_knitspeak(text):
-            return knitwear.Pattern.from_knitspeak(text)
-        return knitwear.Pattern.from_chart(_chart_text(text))
-    if settings["pattern"] == FILE_PATTERN:
-        return _pattern_from_file(settings)
-    return knitwear.Pattern.preset(settings["pattern"])
-
-
-def _pattern_from_file(settings: Mapping[str, Any]) -> "knitwear.Pattern":
-    """Pattern is From File: a Blender Text if one is named, else the file (Knitspeak or a
-    chart, told apart by content)."""
-    name = settings["pattern_text"]
-    if name:
-        text = bpy.data.texts.get(name)
-        if text is None:
-            raise knitwear.PatternError(f"no Blender Text named {name!r} (Pattern Text)")
-        return knitwear.Pattern.from_text(text.as_string())
-    path = settings["pattern_file"]
-    if not path:
-        raise knitwear.PatternError(
-            "Pattern is From File but neither Pattern File nor Pattern Text is set"
-        )
-    return knitwear.Pattern.from_file(bpy.path.abspath(path))
-
-
-def _palette(settings: Mapping[str, Any]) -> list[tuple[float, float, float]]:
-    return [tuple(settings[f"color_{i + 1}"]) for i in range(MAX_COLORS)]
-
-
-def _colors(settings: Mapping[str, Any]) -> dict[str, Any]:
-    """The core's `colors` / `color_image` arguments."""
-    mode = settings["color_mode"]
-    palette = _palette(settings)
-    if mode == "SINGLE":
-        return {"colors": knitwear.ColorPattern(palette[:1], "0")}
-    if mode == "STRIPES":
-        count = int(settings["color_count"])
-        if not 1 <= count <= MAX_COLORS:
-            raise knitwear.ParameterError(f"color_count must be 1 to {MAX_COLORS}, not {count}")
-        return {
-            "colors": knitwear.ColorPattern.stripes(
-                palette[:count], rows_each=int(settings["stripe_height"])
-            )
-        }
-    if mode == "CHART":
-        chart = str(settings["color_chart"]).strip()
-        if chart in knitwear.ColorPattern.presets():
-            # A named colourwork chart (e.g. "fair_isle_band") in the yarn colours.
-            return {"colors": knitwear.ColorPattern.preset(chart, palette)}
-        return {"colors": knitwear.ColorPattern(palette, _chart_text(chart))}
-    if mode == "IMAGE":
-        name = settings["color_image_name"]
-        image = bpy.data.images.get(name) if name else None
-        if image is None:
-            raise knitwear.ParameterError(
-                f"colour image '{name}' not found: pick an image for the Image colour mode"
-                if name
-                else "no colour image chosen: pick an image for the Image colour mode"
-            )
-        return {"color_image": sampling.image_pixels(image)}
-    raise knitwear.ParameterError(
-        f"unknown color_mode {mode!r}; expected SINGLE, STRIPES, CHART or IMAGE"
-    )
-
-
-def _gauge(per_10cm: float, scene: bpy.types.Scene) -> float:
-    """A gauge per 10 cm as the core reads it: per 0.1 scene units, as if a unit were a metre.
-
-    One scene unit is ``scale_length`` metres, so 0.1 units hold ``scale_length`` times the
-    stitches that 10 cm hold.
-    """
-    return per_10cm * scene.unit_settings.scale_length
-
-
-def _size(settings: Mapping[str, Any], scene: bpy.types.Scene) -> dict[str, Any]:
-    """The core's size arguments: explicit counts, or a gauge per 0.1 scene units."""
-    mode = settings["size_mode"]
-    if mode == "COUNTS":
-        return {"courses": int(settings["courses"]), "wales": int(settings["wales"])}
-    if mode == "GAUGE":
-        stitches, rows = float(settings["gauge_stitches"]), float(settings["gauge_rows"])
-        if not (stitches > 0 and rows > 0):
-            raise knitwear.ParameterError(
-                f"gauge must be positive, not {stitches:g} stitches x {rows:g} rows per 10 cm"
-            )
-        return {"gauge": (_gauge(stitches, scene), _gauge(rows, scene))}
-    raise knitwear.ParameterError(f"unknown size_mode {mode!r}; expected GAUGE or COUNTS")
-
-
-def _min_samples(
-    source: bpy.types.Object,
-    context: bpy.types.Context,
-    settings: Mapping[str, Any],
-    size: Mapping[str, Any],
-) -> tuple[int, int] | None:
-    """Grid samples (along the courses, along the wales) a NURBS source is tessellated with:
-    enough for the stitch count it will get. None for a mesh, which is used as it is."""
-    if source.type == "MESH":
-        return None
-    if "gauge" in size:
-        # The stitch count follows from the surface's size: measure it on Blender's own
-        # tessellation first (cheap), then sample densely.
-        probe = sampling.sample_object(source, context, direction=settings["direction"])
-        if probe.grid_shape is None:
-            return None  # modifiers made it a mesh: used as it is
-        extent_u, extent_v = probe.surface.extent
-        wales = extent_u * size["gauge"][0] / _GAUGE_LENGTH
-        courses = extent_v * size["gauge"][1] / _GAUGE_LENGTH
-    else:
-        wales, courses = size["wales"], size["courses"]
-    per = sampling.SAMPLES_PER_STITCH
-    # Capped so an absurd count reaches the core's budget check instead of a huge grid.
-    return (int(min(wales, 1e7) * per) + 1, int(min(courses, 1e7) * per) + 1)
-
-
-def core_settings(settings: Mapping[str, Any], scene: bpy.types.Scene) -> dict[str, Any]:
-    """`knitwear.knit` / `knitwear.Knit` keywords for ``settings`` (all but the pinned ones)."""
-    radius = float(settings["yarn_radius"])
-    return {
-        **_size(settings, scene),
-        **_colors(settings),
-        "yarn_radius": radius if radius > 0 else None,
-        "fluffiness": float(settings["fluffiness"]),
-        "ring_segments": int(settings["ring_segments"]),
-        "samples_per_loop": int(settings["samples_per_loop"]),
-        "tension": float(settings["tension"]),
-        "kappa": float(settings["kappa"]),
-        "seed": int(settings["seed"]),
-        "color_variation": float(settings["color_variation"]),
-        "threads": scene.render.threads,
-    }
-
-
 @dataclass(frozen=True)
 class Bound:
     """What a knit pins at bind time so that any later pose rebuilds the same topology."""
@@ -256,40 +106,6 @@ class Bound:
     #: The triangles seen (one bit per triangle before culling) with Cull Hidden Yarn, else
     #: None.
     seen: bytes | None = None
-
-
-@dataclass(frozen=True)
-class CoreInputs:
-    """What the core is called with for a knit of a source: its surface, the pattern and the
-    keyword settings."""
-
-    sampled: sampling.Sampled
-    pattern: "knitwear.Pattern"
-    kwargs: dict[str, Any]
-    #: Grid samples the NURBS source was tessellated with, or None for a mesh.
-    min_samples: tuple[int, int] | None
-
-
-def core_inputs(
-    source: bpy.types.Object,
-    context: bpy.types.Context,
-    settings: Mapping[str, Any],
-    progress: Progress | None = None,
-) -> CoreInputs:
-    """Sample ``source`` and convert complete ``settings`` for the core, as a knit does (the
-    knitwear texture shares it). Creates nothing; raises `knitwear.KnitError`."""
-    pattern = _pattern(settings)
-    kwargs = core_settings(settings, context.scene)
-    size = {k: kwargs[k] for k in ("gauge", "courses", "wales") if k in kwargs}
-    if progress:
-        progress(0.05)
-    min_samples = _min_samples(source, context, settings, size)
-    sampled = sampling.sample_object(
-        source, context, direction=settings["direction"], min_samples=min_samples
-    )
-    if progress:
-        progress(0.2)
-    return CoreInputs(sampled, pattern, kwargs, min_samples)
 
 
 def _animated(obj: bpy.types.Object | None) -> bool:
@@ -422,7 +238,7 @@ def _run_core(
     progress: Progress | None,
 ) -> tuple[sampling.Sampled, Any, Bound, float]:
     """Everything that can fail, before any datablock is created."""
-    inputs = core_inputs(source, context, settings, progress)
+    inputs = core_inputs.core_inputs(source, context, settings, progress)
     sampled, pattern, kwargs, min_samples = (
         inputs.sampled,
         inputs.pattern,
@@ -480,8 +296,6 @@ def _texture_where_needed(
     pixels per stitch, 256 to 4096 a side); return the material's name, or None."""
     if result.stats["levels"]["texture"] == 0:
         return None
-    from . import texture  # texture imports this module
-
     courses, wales = result.stats["courses"], result.stats["wales"]
     side = [int(min(4096, max(256, 8 * n))) for n in (wales, courses)]
     material = texture.texture_object(
@@ -520,21 +334,6 @@ def _outcome(
     )
 
 
-def _check_source(source: bpy.types.Object | None, what: str) -> bpy.types.Object:
-    if source is None:
-        raise knitwear.SurfaceError(f"{what} has no source surface (was it deleted?)")
-    if source.type not in {"SURFACE", "MESH"}:
-        raise knitwear.SurfaceError(
-            f"'{source.name}' is a {source.type.lower()}: knitwear knits NURBS surfaces and "
-            "meshes with a UV map"
-        )
-    if source.knitwear.is_knit:
-        raise knitwear.SurfaceError(f"'{source.name}' is itself a knit: knit its source instead")
-    if source.knitwear_plush.is_plush:
-        raise knitwear.SurfaceError(f"'{source.name}' is a plush: knit its source instead")
-    return source
-
-
 def knit(
     source: bpy.types.Object,
     *,
@@ -550,8 +349,8 @@ def knit(
     """
     t_start = time.perf_counter()
     context = context or bpy.context
-    settings = _complete(settings)
-    source = _check_source(source, "the object")
+    settings = core_inputs.complete(settings)
+    source = core_inputs.check_source(source, "the object")
     sampled, result, bound, core_s = _run_core(source, context, settings, progress)
 
     t_mesh = time.perf_counter()
@@ -594,8 +393,8 @@ def knit_result(
     Blender: for scripts that want the raw arrays (yarn centrelines per course, colours...).
     The arrays are in the space of the knit object `knit_object` would create."""
     context = context or bpy.context
-    source = _check_source(source, "the object")
-    return _run_core(source, context, _complete(settings), None)[1]
+    source = core_inputs.check_source(source, "the object")
+    return _run_core(source, context, core_inputs.complete(settings), None)[1]
 
 
 def bound_of(obj: bpy.types.Object) -> Bound:
@@ -621,9 +420,9 @@ def bind(
     """A `knitwear.Knit` for knit object ``obj`` that rebuilds exactly its mesh from its
     source in any pose: the stored settings with counts, yarn radius and stitch size pinned
     to the values stored at knit time (see `follow`)."""
-    settings = _complete(settings_from(obj))
+    settings = core_inputs.complete(settings_from(obj))
     bound = bound_of(obj)
-    kwargs = core_settings(settings, scene)
+    kwargs = core_inputs.core_settings(settings, scene)
     for key in ("gauge", "courses", "wales"):
         kwargs.pop(key, None)
     kwargs["courses"], kwargs["wales"] = bound.counts
@@ -635,7 +434,7 @@ def bind(
     if bound.seen is not None:
         # And the yarn it saw.
         kwargs["seen_triangles"] = bound.seen
-    return knitwear.Knit(sampled.surface, _pattern(settings), **kwargs)
+    return knitwear.Knit(sampled.surface, core_inputs.pattern_of(settings), **kwargs)
 
 
 def sample_source(
@@ -643,7 +442,7 @@ def sample_source(
 ) -> sampling.Sampled:
     """Knit object ``obj``'s source as ``depsgraph`` evaluates it now, sampled as it was at
     knit time (same direction, same grid density)."""
-    source = _check_source(obj.knitwear.source, f"'{obj.name}'")
+    source = core_inputs.check_source(obj.knitwear.source, f"'{obj.name}'")
     samples = bound_of(obj).samples
     return sampling.sample_object(
         source,
@@ -670,8 +469,8 @@ def update(
     context = context or bpy.context
     if not obj.knitwear.is_knit:
         raise knitwear.ParameterError(f"'{obj.name}' is not a knit: knit a surface first")
-    merged = _complete(settings_from(obj) | dict(settings))
-    source = _check_source(obj.knitwear.source, f"'{obj.name}'")
+    merged = core_inputs.complete(settings_from(obj) | dict(settings))
+    source = core_inputs.check_source(obj.knitwear.source, f"'{obj.name}'")
     sampled, result, bound, core_s = _run_core(source, context, merged, progress)
 
     t_mesh = time.perf_counter()

@@ -2,7 +2,7 @@
 itself as a material (seed 000, section 3). No yarn geometry, so it costs one image: the
 stand-in for knitwear seen from afar.
 
-The source is sampled and the settings converted exactly as for a knit (`api.core_inputs`),
+The source is sampled and the settings converted exactly as for a knit (`core_inputs`),
 so the texture shows the stitches, perturbation and colours the Knit operator would build.
 The image, "<source> Knit Texture", holds the core's linear RGBA pixels over the knit's
 (u,v) domain (a NURBS surface's whole parameter range, a mesh's UV bounding box); the
@@ -17,7 +17,7 @@ import knitwear
 import numpy as np
 from bpy.props import IntProperty
 
-from . import api
+from . import core_inputs
 from .properties import SETTING_NAMES, KnitSettingsMixin
 from .settings_ui import draw_settings
 
@@ -120,9 +120,9 @@ def texture_object(
     Raises `knitwear.KnitError` (nothing is created then).
     """
     context = context or bpy.context
-    settings = api._complete(settings)
-    source = api._check_source(source, "the object")
-    inputs = api.core_inputs(source, context, settings)
+    settings = core_inputs.complete(settings)
+    source = core_inputs.check_source(source, "the object")
+    inputs = core_inputs.core_inputs(source, context, settings)
     surface = inputs.sampled.surface
     # The core's u runs along the courses: the surface's v where they run along V. The image
     # is stored in the UV map's order (transposed then), so that viewers that sample it by

@@ -62,10 +62,11 @@ def test_following_equals_the_knit_bound_at_rest_posed_anew(
     scene = bpy.context.scene
     source = waving_cloth()
     knit = knit_of(api, source)
-    settings = api._complete(api.settings_from(knit))
+    settings = api.core_inputs.complete(api.settings_from(knit))
     at_rest = addon.sampling.sample_object(source, bpy.context)
+    inputs = api.core_inputs
     bound_at_rest = knitwear.Knit(
-        at_rest.surface, api._pattern(settings), **api.core_settings(settings, scene)
+        at_rest.surface, inputs.pattern_of(settings), **inputs.core_settings(settings, scene)
     )
     scene.frame_set(12)
     posed = addon.sampling.sample_object(source, bpy.context)

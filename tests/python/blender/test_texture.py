@@ -58,7 +58,7 @@ def _core_texture(
 ) -> np.ndarray:
     """The core's texture for ``source``, in the UV map's order (u and v swapped where
     the courses run along V)."""
-    inputs = api.core_inputs(source, bpy.context, api._complete(settings))
+    inputs = api.core_inputs.core_inputs(source, bpy.context, api.core_inputs.complete(settings))
     if inputs.sampled.courses_along == "V":
         img = core.knit_texture(
             inputs.sampled.surface, inputs.pattern, width=height, height=width, **inputs.kwargs
