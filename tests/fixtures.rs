@@ -14,42 +14,11 @@ use knitwear::pattern::StitchPattern;
 use knitwear::surface::{GridSurface, MeshSurface, Surface};
 use knitwear::KnitError;
 
+mod common;
+use common::surfaces::{grid, grid_buffers};
+
 // ---------------------------------------------------------------------------------------------
 // Builders
-
-/// Row-major `(rows, cols, 3)` buffers sampled from `f(u, v) -> (position, normal)`, with
-/// `u_j = j / cols` when `cyclic_u` (the grid wraps) and `j / (cols - 1)` otherwise.
-fn grid_buffers(
-    rows: usize,
-    cols: usize,
-    cyclic_u: bool,
-    f: impl Fn(f32, f32) -> (Vec3, Vec3),
-) -> (Vec<f32>, Vec<f32>) {
-    let (mut p, mut n) = (Vec::new(), Vec::new());
-    for i in 0..rows {
-        for j in 0..cols {
-            let u = if cyclic_u {
-                j as f32 / cols as f32
-            } else {
-                j as f32 / (cols - 1) as f32
-            };
-            let (a, b) = f(u, i as f32 / (rows - 1) as f32);
-            p.extend(a.to_array());
-            n.extend(b.to_array());
-        }
-    }
-    (p, n)
-}
-
-fn grid(
-    rows: usize,
-    cols: usize,
-    cyclic_u: bool,
-    f: impl Fn(f32, f32) -> (Vec3, Vec3),
-) -> GridSurface {
-    let (p, n) = grid_buffers(rows, cols, cyclic_u, f);
-    GridSurface::new(rows, cols, &p, &n, cyclic_u, false).unwrap()
-}
 
 /// Mesh buffers: positions, normals, triangles, per-corner UVs.
 #[derive(Default, Clone)]
@@ -828,7 +797,7 @@ fn absurd_requests() {
                 ..params()
             }),
             is_parameter,
-            &["yarn radius must be positive"],
+            &["yarn_radius must be positive"],
         );
     }
     for kappa in [-0.1, 0.5, f32::NAN] {

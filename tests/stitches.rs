@@ -9,27 +9,8 @@ use knitwear::pattern::{Instruction as I, StitchPattern, WrittenRow};
 use knitwear::skeleton::crossings::CrossingOrder;
 use knitwear::surface::{GridSurface, PlaneSurface, Surface};
 
-fn grid(
-    rows: usize,
-    cols: usize,
-    cyclic_u: bool,
-    f: impl Fn(f32, f32) -> (Vec3, Vec3),
-) -> GridSurface {
-    let (mut p, mut n) = (Vec::new(), Vec::new());
-    for i in 0..rows {
-        for j in 0..cols {
-            let u = if cyclic_u {
-                j as f32 / cols as f32
-            } else {
-                j as f32 / (cols - 1) as f32
-            };
-            let (a, b) = f(u, i as f32 / (rows - 1) as f32);
-            p.extend(a.to_array());
-            n.extend(b.to_array());
-        }
-    }
-    GridSurface::new(rows, cols, &p, &n, cyclic_u, false).unwrap()
-}
+mod common;
+use common::surfaces::grid;
 
 fn rows(spec: &[(bool, Vec<I>)]) -> StitchPattern {
     let rows: Vec<WrittenRow> = spec

@@ -1,0 +1,80 @@
+//! Every preset's knit, bit for bit: the digests of its output buffers on a small sheet at
+//! the default settings and the add-on's irregularity (kappa 0.005), recorded before the
+//! house was rearranged ("One source per setting"). A refactor that changes one bit of any
+//! preset's yarn, colours or topology fails here; so does a machine or thread count that
+//! knits differently from the one that recorded them.
+//!
+//! A change meant to alter the output records the new digests with
+//! `cargo run --release --example output_digest` and says why in its commit.
+
+use knitwear::knit::{KnitParams, PreparedKnit};
+use knitwear::pattern::{color_preset, StitchPattern};
+use knitwear::surface::PlaneSurface;
+
+mod common;
+use common::digest::digest;
+
+/// (preset, digest): `examples/output_digest.rs`'s output. `fair_isle+band` is the Fair
+/// Isle preset in the `fair_isle_band` colour chart.
+const GOLDEN: &[(&str, u64)] = &[
+    ("stockinette", 0xeb53742a8d884b92),
+    ("reverse_stockinette", 0x057c9efeacd74b1f),
+    ("garter", 0xda6fd2d75ef0b309),
+    ("rib_1x1", 0x62d9523f8c942769),
+    ("rib_2x2", 0xcbdb1b8b201297c4),
+    ("seed", 0xc39ad4044c277004),
+    ("moss", 0xf968114150872504),
+    ("basketweave", 0xabca32c855822a89),
+    ("twisted_rib", 0x1ec8c8bc5f3a10b3),
+    ("cable_c4", 0x71ca6cf3c0a9d964),
+    ("cable_c6", 0x8b5aacfc92621e84),
+    ("horseshoe_cable", 0x5041a1787cd81b80),
+    ("honeycomb_cable", 0xbd7e6e16ab480dd4),
+    ("mock_cable_rib", 0xe43f6c19062af8d3),
+    ("twisted_cable_rib", 0x1d9a74e68fe19347),
+    ("diamond", 0xee9368b15ba67fd7),
+    ("chevron", 0x28511bf8fa5000e6),
+    ("feather_and_fan", 0x0a67fbb8e808bc58),
+    ("eyelet_rows", 0x19277471a2521ee6),
+    ("lace_diamond", 0x0179d33671a6498c),
+    ("bobbles", 0x6d0cc9c0106cbe63),
+    ("linen_stitch", 0x51685d4f54ff1696),
+    ("fair_isle", 0xeb53742a8d884b92),
+    ("fair_isle+band", 0x069e22cd7eb097ad),
+];
+
+#[test]
+fn every_preset_knits_the_recorded_bits() {
+    let plane = PlaneSurface {
+        width: 0.05,
+        height: 0.04,
+    };
+    assert_eq!(
+        GOLDEN.len(),
+        StitchPattern::presets().len() + 1,
+        "a preset without a recorded digest"
+    );
+    let mut changed = Vec::new();
+    for &(name, want) in GOLDEN {
+        let (preset, colors) = match name.split_once('+') {
+            Some((preset, chart)) => {
+                let palette = vec![[0.5, 0.05, 0.05], [0.8, 0.75, 0.65], [0.03, 0.1, 0.3]];
+                let colors = color_preset(&format!("fair_isle_{chart}"), palette).unwrap();
+                (preset, Some(colors))
+            }
+            None => (name, None),
+        };
+        let pattern = StitchPattern::preset(preset).unwrap();
+        let p = KnitParams {
+            kappa: 0.005,
+            colors,
+            ..KnitParams::default()
+        };
+        let knit = PreparedKnit::new(&plane, &pattern, &p).unwrap();
+        let got = digest(&knit.build(&plane).unwrap());
+        if got != want {
+            changed.push(format!("{name}: {got:016x}, recorded {want:016x}"));
+        }
+    }
+    assert!(changed.is_empty(), "{}", changed.join("\n"));
+}
