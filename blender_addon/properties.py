@@ -21,6 +21,7 @@ from bpy.props import (
     StringProperty,
 )
 
+from .core_settings import from_core
 from .settings_schema import SettingsSchema
 
 #: How many yarn colours the palette offers (``color_1`` .. ``color_4``).
@@ -67,9 +68,7 @@ def _pattern_items() -> list[tuple[str, str, str]]:
     for name in knitwear.Pattern.presets():
         label, tip = _PRESET_LABELS.get(name, (name.replace("_", " ").title(), ""))
         items.append((name, label, tip))
-    items.append(
-        (CUSTOM_PATTERN, "Custom Chart", "The stitch chart or Knitspeak typed in Chart")
-    )
+    items.append((CUSTOM_PATTERN, "Custom Chart", "The stitch chart or Knitspeak typed in Chart"))
     items.append(
         (
             FILE_PATTERN,
@@ -83,8 +82,8 @@ def _pattern_items() -> list[tuple[str, str, str]]:
 # Built once at import: an EnumProperty keeps a reference to a static list, whereas a callback
 # would have to keep its result alive itself (Blender does not copy the strings).
 PATTERN_ITEMS = _pattern_items()
-DEFAULT_PATTERN = "stockinette" if any(i[0] == "stockinette" for i in PATTERN_ITEMS) else (
-    PATTERN_ITEMS[0][0]
+DEFAULT_PATTERN = (
+    "stockinette" if any(i[0] == "stockinette" for i in PATTERN_ITEMS) else (PATTERN_ITEMS[0][0])
 )
 
 SIZE_MODE_ITEMS = [
@@ -93,19 +92,31 @@ SIZE_MODE_ITEMS = [
 ]
 
 DIRECTION_ITEMS = [
-    ("AUTO", "Auto", "Courses go round a surface that is closed in one direction, as when "
-     "knitting in the round; otherwise along U"),
+    (
+        "AUTO",
+        "Auto",
+        "Courses go round a surface that is closed in one direction, as when "
+        "knitting in the round; otherwise along U",
+    ),
     ("U", "Along U", "Courses (the yarn's rows) run along the surface's U direction"),
     ("V", "Along V", "Courses (the yarn's rows) run along the surface's V direction"),
 ]
 
 DETAIL_MODE_ITEMS = [
-    ("AUTO", "Auto", "Model each stitch as finely as the scene camera sees it: full quality "
-     "near the camera, fewer segments further away, plain tubes in the distance, the "
-     "knitwear texture on the source where stitches are a few pixels; stitches outside the "
-     "camera's view are not built. Without a scene camera, every stitch is full quality"),
-    ("FULL", "Full", "Every stitch at the quality set in Yarn (ring segments, samples per "
-     "loop), whatever the camera sees"),
+    (
+        "AUTO",
+        "Auto",
+        "Model each stitch as finely as the scene camera sees it: full quality "
+        "near the camera, fewer segments further away, plain tubes in the distance, the "
+        "knitwear texture on the source where stitches are a few pixels; stitches outside the "
+        "camera's view are not built. Without a scene camera, every stitch is full quality",
+    ),
+    (
+        "FULL",
+        "Full",
+        "Every stitch at the quality set in Yarn (ring segments, samples per "
+        "loop), whatever the camera sees",
+    ),
 ]
 
 COLOR_MODE_ITEMS = [
@@ -177,42 +188,18 @@ class KnitSettingsMixin:
         default="GAUGE",
     )
     gauge_stitches: FloatProperty(
-        name="Stitches / 10 cm",
-        description="Gauge: stitches per 10 cm measured along a course (scene units are "
-        "metres times the scene's unit scale)",
-        default=20.0,
-        min=0.01,
-        soft_min=2.0,
-        soft_max=60.0,
-        precision=1,
+        **from_core(
+            "gauge_stitches",
+            soft_min=2.0,
+            soft_max=60.0,
+            precision=1,
+        )
     )
-    gauge_rows: FloatProperty(
-        name="Rows / 10 cm",
-        description="Gauge: rows (courses) per 10 cm measured along a wale",
-        default=28.0,
-        min=0.01,
-        soft_min=2.0,
-        soft_max=80.0,
-        precision=1,
-    )
-    # The hard maxima are deliberately far beyond what fits in memory: the core's budget check
-    # gives a precise error (with the size it would need) instead of a silent clamp.
-    courses: IntProperty(
-        name="Courses",
-        description="Number of courses (rows of stitches) over the whole surface",
-        default=30,
-        min=1,
-        max=100_000_000,
-        soft_max=2000,
-    )
-    wales: IntProperty(
-        name="Wales",
-        description="Number of wales (columns of stitches) over the whole surface",
-        default=30,
-        min=1,
-        max=100_000_000,
-        soft_max=2000,
-    )
+    gauge_rows: FloatProperty(**from_core("gauge_rows", soft_min=2.0, soft_max=80.0, precision=1))
+    # The counts' hard maximum is the core's (a million a direction), far beyond what fits in
+    # memory: the core's budget check gives a precise error (with the size it would need).
+    courses: IntProperty(**from_core("courses", soft_max=2000))
+    wales: IntProperty(**from_core("wales", soft_max=2000))
     direction: EnumProperty(
         name="Course Direction",
         description="Which surface direction the courses (rows of stitches) run along",
@@ -221,69 +208,20 @@ class KnitSettingsMixin:
     )
     # -- Yarn
     yarn_radius: FloatProperty(
-        name="Yarn Radius",
-        description="Radius of the yarn in scene units; 0 = automatic, a tenth of the stitch "
-        "width (the thickness the core's loop shapes are tuned for)",
-        default=0.0,
-        min=0.0,
-        soft_max=0.01,
-        subtype="DISTANCE",
-        unit="LENGTH",
-        precision=4,
+        **from_core(
+            "yarn_radius",
+            soft_max=0.01,
+            subtype="DISTANCE",
+            unit="LENGTH",
+            precision=4,
+        )
     )
-    fluffiness: FloatProperty(
-        name="Fluffiness",
-        description="How far stray fibres stand out of the yarn, as a fraction of its radius "
-        "(0 = smooth tube)",
-        default=0.5,
-        min=0.0,
-        soft_max=1.0,
-        max=4.0,
-        subtype="FACTOR",
-    )
-    ring_segments: IntProperty(
-        name="Ring Segments",
-        description="Vertices around the yarn's cross-section (more = rounder, heavier)",
-        default=6,
-        min=3,
-        soft_max=16,
-        max=64,
-    )
-    samples_per_loop: IntProperty(
-        name="Samples per Loop",
-        description="Rings along the yarn per stitch loop (more = smoother curves, heavier)",
-        default=16,
-        min=6,
-        soft_max=48,
-        max=256,
-    )
-    tension: FloatProperty(
-        name="Spline Tension",
-        description="Tension of the cardinal spline through each loop's key points "
-        "(0 = Catmull-Rom, round loops; towards 1 = straighter segments)",
-        default=0.0,
-        min=0.0,
-        max=0.99,
-        subtype="FACTOR",
-    )
-    kappa: FloatProperty(
-        name="Irregularity",
-        description="How far stitches stray from a perfect grid, as hand knitting does: the "
-        "kappa of the recursive perturbation (0 = machine-regular; at most 0.02, where no "
-        "stitch can fold over)",
-        default=0.005,
-        min=0.0,
-        max=0.02,
-        step=0.05,
-        precision=4,
-    )
-    seed: IntProperty(
-        name="Seed",
-        description="Random seed of the stitch irregularity and fibres; the same seed gives "
-        "the same knit on every machine",
-        default=0,
-        min=0,
-    )
+    fluffiness: FloatProperty(**from_core("fluffiness", soft_max=1.0, subtype="FACTOR"))
+    ring_segments: IntProperty(**from_core("ring_segments", soft_max=16))
+    samples_per_loop: IntProperty(**from_core("samples_per_loop", soft_max=48))
+    tension: FloatProperty(**from_core("tension", subtype="FACTOR"))
+    kappa: FloatProperty(**from_core("kappa", step=0.05, precision=4))
+    seed: IntProperty(**from_core("seed"))
     # -- Colour
     color_mode: EnumProperty(
         name="Colour",
@@ -324,15 +262,7 @@ class KnitSettingsMixin:
         "(u,v) in the surface's parameter space or UV map)",
         default="",
     )
-    color_variation: FloatProperty(
-        name="Variation",
-        description="Random per-fibre brightness variation that gives yarn its fibrous look "
-        "(fraction of the colour)",
-        default=0.15,
-        min=0.0,
-        max=1.0,
-        subtype="FACTOR",
-    )
+    color_variation: FloatProperty(**from_core("color_variation", subtype="FACTOR"))
     # -- Detail (camera-driven level of detail and culling)
     detail_mode: EnumProperty(
         name="Detail",
@@ -341,71 +271,40 @@ class KnitSettingsMixin:
         default="AUTO",
     )
     detail_full_px: FloatProperty(
-        name="Full Above",
-        description="Stitches at least this many pixels across in the render get the full "
-        "quality set in Yarn",
-        default=12.0,
-        min=0.0,
-        soft_max=200.0,
-        precision=1,
-        subtype="PIXEL",
+        **from_core(
+            "detail_full_px",
+            soft_max=200.0,
+            precision=1,
+            subtype="PIXEL",
+        )
     )
     detail_mid_px: FloatProperty(
-        name="Reduced Above",
-        description="Stitches at least this many pixels across (and below Full Above) get "
-        "half the samples and two thirds of the ring segments",
-        default=5.0,
-        min=0.0,
-        soft_max=100.0,
-        precision=1,
-        subtype="PIXEL",
+        **from_core(
+            "detail_mid_px",
+            soft_max=100.0,
+            precision=1,
+            subtype="PIXEL",
+        )
     )
     detail_texture_px: FloatProperty(
-        name="Texture Below",
-        description="Stitches smaller than this many pixels are not built: the source "
-        "surface wears the knitwear texture there. Between this and Reduced Above, stitches "
-        "are plain tubes of 3 segments",
-        default=1.0,
-        min=0.0,
-        soft_max=20.0,
-        precision=1,
-        subtype="PIXEL",
+        **from_core(
+            "detail_texture_px",
+            soft_max=20.0,
+            precision=1,
+            subtype="PIXEL",
+        )
     )
     frustum_margin: FloatProperty(
-        name="Frame Margin",
-        description="Stitches this far outside the camera's frame (a fraction of the frame's "
-        "half-size) are still built; the camera is followed over the scene's frame range",
-        default=0.1,
-        min=0.0,
-        soft_max=1.0,
-        max=100.0,
-        subtype="FACTOR",
+        **from_core(
+            "frustum_margin",
+            soft_min=0.0,
+            soft_max=1.0,
+            subtype="FACTOR",
+        )
     )
-    cull_back_faces: BoolProperty(
-        name="Cull Back",
-        description="On a closed surface, do not build the stitches that face away from the "
-        "camera in every frame (the front hides them)",
-        default=True,
-    )
-    cull_hidden: BoolProperty(
-        name="Cull Hidden Yarn",
-        description="Do not build the yarn that other yarn hides from the camera in every "
-        "sampled frame (most of a knit's triangles: the back of each strand, the loops "
-        "behind the fabric). Applies while the source does not animate; a moving camera "
-        "is followed over the frame range",
-        default=True,
-    )
-    cull_hidden_samples: IntProperty(
-        name="Visibility Samples",
-        description="Samples per pixel side at which Cull Hidden Yarn looks for the yarn the "
-        "camera sees (2: 4 samples a pixel, as an anti-aliased render spreads its own; odd "
-        "counts include the pixel centres a one-sample render looks at). More keeps the "
-        "slivers between nearer strands, at more triangles and time",
-        default=2,
-        min=1,
-        max=16,
-    )
-
+    cull_back_faces: BoolProperty(**from_core("cull_back_faces"))
+    cull_hidden: BoolProperty(**from_core("cull_hidden"))
+    cull_hidden_samples: IntProperty(**from_core("cull_hidden_samples"))
 
 
 def _poll_source(_self: bpy.types.PropertyGroup, obj: bpy.types.Object) -> bool:

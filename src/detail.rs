@@ -140,20 +140,22 @@ pub struct DetailParams {
 }
 
 impl Default for DetailParams {
+    /// The defaults of [`crate::settings`].
     fn default() -> Self {
+        use crate::settings as s;
         Self {
             views: Vec::new(),
             resolution: (1920, 1080),
-            full_px: 12.0,
-            mid_px: 5.0,
-            texture_px: 1.0,
+            full_px: s::DETAIL_FULL_PX.default_f32(),
+            mid_px: s::DETAIL_MID_PX.default_f32(),
+            texture_px: s::DETAIL_TEXTURE_PX.default_f32(),
             mid: None,
             far: None,
-            frustum_margin: 0.1,
-            cull_back_faces: false,
+            frustum_margin: s::FRUSTUM_MARGIN.default_f32(),
+            cull_back_faces: s::CULL_BACK_FACES.default == Some(1.0),
             pinned: None,
-            cull_hidden: false,
-            hidden_supersampling: 4,
+            cull_hidden: s::CULL_HIDDEN.default == Some(1.0),
+            hidden_supersampling: s::HIDDEN_SUPERSAMPLING.default_usize() as u32,
             pinned_seen: None,
         }
     }
@@ -209,18 +211,8 @@ impl DetailParams {
                 t.0, t.1, t.2
             )));
         }
-        if !self.frustum_margin.is_finite() || self.frustum_margin > 100.0 {
-            return Err(KnitError::Parameter(format!(
-                "frustum margin must be a finite fraction of the frame up to 100, not {}",
-                self.frustum_margin
-            )));
-        }
-        if !(1..=16).contains(&self.hidden_supersampling) {
-            return Err(KnitError::Parameter(format!(
-                "hidden-yarn supersampling must be 1..=16 samples per pixel side, not {}",
-                self.hidden_supersampling
-            )));
-        }
+        crate::settings::FRUSTUM_MARGIN.check(self.frustum_margin)?;
+        crate::settings::HIDDEN_SUPERSAMPLING.check(self.hidden_supersampling)?;
         if self.cull_hidden && self.views.is_empty() && self.pinned_seen.is_none() {
             return Err(KnitError::Parameter(
                 "culling hidden yarn needs camera views or the pinned seen triangles of an \

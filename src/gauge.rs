@@ -3,7 +3,7 @@
 use crate::error::{KnitError, Result};
 
 /// Most stitches along one direction of a knit or a plush.
-pub const MAX_STITCHES_PER_DIRECTION: usize = 1_000_000;
+pub const MAX_STITCHES_PER_DIRECTION: usize = crate::settings::COURSES.max as usize;
 
 /// `(courses, wales)`: the counts given, or those a `gauge` (stitches, rows per 0.1 scene
 /// units) gives over a surface `extent` long along u (a course) and v (a wale), at least 1.

@@ -27,8 +27,11 @@ use crate::surface::{Surface, UvRect};
 use crate::visibility::seen_triangles;
 
 /// Gauge used when neither counts nor a gauge are given: 20 stitches and 28 rows per 10 cm
-/// (a worsted-weight yarn on 4.5 mm needles).
-pub const DEFAULT_GAUGE: (f32, f32) = (20.0, 28.0);
+/// (a worsted-weight yarn on 4.5 mm needles; [`crate::settings::GAUGE_STITCHES`]).
+pub const DEFAULT_GAUGE: (f32, f32) = (
+    crate::settings::GAUGE_STITCHES.default_f32(),
+    crate::settings::GAUGE_ROWS.default_f32(),
+);
 /// Default yarn radius as a fraction of the stitch width: a diameter of a fifth of a stitch
 /// (thinner yarn looks sparse; this is where the tuned offsets clear best).
 pub const DEFAULT_RADIUS_PER_STITCH_WIDTH: f32 = 0.1;
@@ -91,22 +94,24 @@ pub struct KnitParams {
 }
 
 impl Default for KnitParams {
+    /// The defaults of [`crate::settings`].
     fn default() -> Self {
+        use crate::settings as s;
         Self {
             courses: None,
             wales: None,
             gauge: None,
             yarn_radius: None,
             stitch_size: None,
-            fluffiness: 0.5,
-            ring_segments: 6,
-            samples_per_loop: 16,
-            tension: 0.0,
-            kappa: 0.0,
+            fluffiness: s::FLUFFINESS.default_f32(),
+            ring_segments: s::RING_SEGMENTS.default_usize(),
+            samples_per_loop: s::SAMPLES_PER_LOOP.default_usize(),
+            tension: s::TENSION.default_f32(),
+            kappa: s::KAPPA.default_f32(),
             seed: 0,
             colors: None,
             color_image: None,
-            color_variation: 0.15,
+            color_variation: s::COLOR_VARIATION.default_f32(),
             threads: None,
             budget_bytes: budget::DEFAULT_BUDGET_BYTES,
             measure_clearance: false,
@@ -192,41 +197,25 @@ pub struct KnitOutput {
     pub stats: KnitStats,
 }
 
-fn check_range<T: PartialOrd + std::fmt::Display + Copy>(
-    name: &str,
-    value: T,
-    lo: T,
-    hi: T,
-) -> Result<()> {
-    if value >= lo && value <= hi {
-        Ok(())
-    } else {
-        Err(KnitError::Parameter(format!(
-            "{name} must be in {lo}..={hi}, not {value}"
-        )))
-    }
-}
-
 fn validate(p: &KnitParams) -> Result<()> {
-    check_range("fluffiness", p.fluffiness, 0.0, 4.0)?;
-    check_range("ring segments", p.ring_segments, 3, 64)?;
-    check_range("samples per loop", p.samples_per_loop, 6, 256)?;
-    check_range("spline tension", p.tension, 0.0, 0.99)?;
-    check_range("colour variation", p.color_variation, 0.0, 1.0)?;
+    use crate::settings as s;
+    s::FLUFFINESS.check(p.fluffiness)?;
+    s::RING_SEGMENTS.check_count(p.ring_segments)?;
+    s::SAMPLES_PER_LOOP.check_count(p.samples_per_loop)?;
+    s::TENSION.check(p.tension)?;
+    s::COLOR_VARIATION.check(p.color_variation)?;
+    s::KAPPA.check(p.kappa)?;
     if let Some(d) = &p.detail {
         d.validate()?;
     }
-    for (name, n) in [("courses", p.courses), ("wales", p.wales)] {
+    for (setting, n) in [(s::COURSES, p.courses), (s::WALES, p.wales)] {
         if let Some(n) = n {
-            check_range(name, n, 1, MAX_STITCHES_PER_DIRECTION)?;
+            setting.check_count(n)?;
         }
     }
-    if let Some((s, r)) = p.gauge {
-        if !(s.is_finite() && r.is_finite() && s > 0.0 && r > 0.0) {
-            return Err(KnitError::Parameter(format!(
-                "gauge must be positive stitches and rows per 10 cm, not ({s}, {r})"
-            )));
-        }
+    if let Some((stitches, rows)) = p.gauge {
+        s::GAUGE_STITCHES.check(stitches)?;
+        s::GAUGE_ROWS.check(rows)?;
     }
     if let Some((w, h)) = p.stitch_size {
         if !(w.is_finite() && h.is_finite() && w > 0.0 && h > 0.0) {
@@ -238,7 +227,7 @@ fn validate(p: &KnitParams) -> Result<()> {
     if let Some(r) = p.yarn_radius {
         if !(r.is_finite() && r > 0.0) {
             return Err(KnitError::Parameter(format!(
-                "yarn radius must be positive, not {r}"
+                "yarn_radius must be positive (or None: a tenth of the stitch width), not {r}"
             )));
         }
     }

@@ -7,6 +7,7 @@
 //! | stage | module | what it holds |
 //! |---|---|---|
 //! | errors | [`error`] | the typed errors every stage returns |
+//! | settings | [`settings`] | every user setting declared once: default, range, unit, doc |
 //! | randomness | [`rng`] | the one seed mixer (SplitMix64) every random choice draws from |
 //! | arithmetic | [`portable_math`] | the same float bits on every machine |
 //! | buffers | [`output_buffer`] | preallocated output buffers handed to NumPy |
@@ -45,6 +46,7 @@ pub mod pattern;
 pub mod pile;
 pub mod portable_math;
 pub mod rng;
+pub mod settings;
 pub mod skeleton;
 pub mod surface;
 pub mod texture;

@@ -41,6 +41,7 @@ from ._core import (
     measure_clearance,
     measure_cover,
     plush,
+    settings,
 )
 
 
@@ -81,5 +82,6 @@ __all__ = [
     "knit_texture",
     "measure_clearance",
     "measure_cover",
+    "settings",
     "plush",
 ]

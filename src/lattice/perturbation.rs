@@ -106,7 +106,7 @@ use crate::error::{KnitError, Result};
 
 /// The largest kappa [`Perturbation::new`] accepts: every tile keeps at least
 /// `1 - 40 * kappa` (here 20 %) of its regular area, for every seed (see the module docs).
-pub const KAPPA_MAX: f32 = 0.02;
+pub const KAPPA_MAX: f32 = crate::settings::KAPPA.max as f32;
 
 /// Spacing, in tiles, of the coarsest level grid along a non-cyclic direction.
 pub const LEVEL0_SPACING: usize = 16;

@@ -56,7 +56,7 @@ pub const MAX_SLICES: usize = 64;
 /// Most piles per stitch.
 pub const MAX_PILES_PER_STITCH: usize = 64;
 /// Most stitches along one direction.
-pub const MAX_STITCHES_PER_DIRECTION: usize = 1_000_000;
+pub const MAX_STITCHES_PER_DIRECTION: usize = crate::gauge::MAX_STITCHES_PER_DIRECTION;
 /// Default nominal lean: 30 degrees from the normal, towards -v (the pile brushed down the
 /// wale, as plush is finished).
 pub const DEFAULT_LEAN: (f32, f32) = (FRAC_PI_6, -std::f32::consts::FRAC_PI_2);

@@ -14,6 +14,7 @@ use pyo3::types::PyDict;
 
 mod detail;
 mod pile;
+mod settings;
 mod texture;
 
 use crate::error::KnitError;
@@ -1004,6 +1005,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_force_internal_error, m)?)?;
     pile::register(m)?;
     texture::register(m)?;
+    settings::register(m)?;
     detail::register(m)?;
     Ok(())
 }

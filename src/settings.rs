@@ -1,0 +1,441 @@
+//! Every setting a user gives a knit, declared once: its name, kind, default, range, unit,
+//! label and one line of doc.
+//!
+//! The table is the one source the other layers read:
+//! - the core's defaults ([`crate::knit::KnitParams::default`],
+//!   [`crate::detail::DetailParams::default`]) and its range checks ([`Setting::check`]);
+//! - the Python module's `knitwear.settings()`, from which the Blender add-on builds its
+//!   properties (label, tooltip, default, range);
+//! - the README's settings table (`scripts/settings_table.py` writes it).
+//!
+//! The pyo3 signatures and the `.pyi` stub must spell their defaults as literals; a test
+//! (`tests/python/core/test_settings.py`) fails when they disagree with this table, and
+//! another (`tests/python/blender/test_settings_source.py`) when the add-on's properties do.
+//!
+//! Where the add-on's default differs from the core's, the difference is declared here
+//! ([`Setting::addon_default`] and [`Setting::addon_why`]): the core's defaults are what a
+//! script gets (a regular, complete knit); the add-on's what a click in a scene with a
+//! camera should give.
+
+use crate::error::{KnitError, Result};
+
+/// What a setting holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    Int,
+    Float,
+    Bool,
+}
+
+impl Kind {
+    /// The Python type's name, as `knitwear.settings()` reports it.
+    pub fn python_name(self) -> &'static str {
+        match self {
+            Kind::Int => "int",
+            Kind::Float => "float",
+            Kind::Bool => "bool",
+        }
+    }
+}
+
+/// One setting. Ranges are inclusive, in the setting's unit; an unbounded end is infinite.
+/// Booleans have the range 0..=1 and a default of 0 or 1.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Setting {
+    /// The keyword of `knitwear.Knit` (and the add-on's property name, unless
+    /// `addon_name` says otherwise). `None` in `core_keyword` where the core takes it inside
+    /// another keyword (the gauge's stitches and rows are `gauge=(s, r)`).
+    pub name: &'static str,
+    /// The core's keyword, where it is not `name` (or `None` where it is part of a tuple).
+    pub core_keyword: Option<&'static str>,
+    /// The tuple keyword it is part of, where `core_keyword` is `None`, as the core spells
+    /// it (`gauge=(stitches, rows)`).
+    pub part_of: Option<&'static str>,
+    /// The Blender property's name, where it is not `name`.
+    pub addon_name: Option<&'static str>,
+    /// The label the add-on shows.
+    pub label: &'static str,
+    pub kind: Kind,
+    /// The core's default; `None`: worked out from other settings (the counts from the
+    /// gauge, the yarn radius from the stitch width).
+    pub default: Option<f64>,
+    /// The add-on's default, where it differs from the core's (and why, in `addon_why`).
+    pub addon_default: Option<f64>,
+    pub addon_why: &'static str,
+    /// Smallest and largest value the core accepts.
+    pub min: f64,
+    pub max: f64,
+    /// Unit of the value ("" for a pure number).
+    pub unit: &'static str,
+    /// One line of doc: the add-on's tooltip, the README's description.
+    pub doc: &'static str,
+}
+
+impl Setting {
+    /// The default the add-on gives the property: its own where declared, else the core's
+    /// (a setting the core works out has an add-on default).
+    pub const fn addon_value(&self) -> f64 {
+        match (self.addon_default, self.default) {
+            (Some(v), _) => v,
+            (None, Some(v)) => v,
+            (None, None) => 0.0,
+        }
+    }
+
+    /// The Blender property's name.
+    pub const fn property(&self) -> &'static str {
+        match self.addon_name {
+            Some(n) => n,
+            None => self.name,
+        }
+    }
+
+    /// The core's default as an `f32` (a setting with a default).
+    pub const fn default_f32(&self) -> f32 {
+        match self.default {
+            Some(v) => v as f32,
+            None => 0.0,
+        }
+    }
+
+    /// The core's default as a count (a setting with a default).
+    pub const fn default_usize(&self) -> usize {
+        match self.default {
+            Some(v) => v as usize,
+            None => 0,
+        }
+    }
+
+    /// `value` if it is finite and within the range, else a [`KnitError::Parameter`] that
+    /// names the setting and its range.
+    pub fn check<T: Into<f64> + Copy>(&self, value: T) -> Result<()> {
+        let v: f64 = value.into();
+        if v.is_finite() && v >= self.min && v <= self.max {
+            return Ok(());
+        }
+        let range = match (self.min > f64::MIN, self.max.is_finite()) {
+            (true, true) => format!("{}..={}", self.min, self.max),
+            (true, false) if self.min > 0.0 && self.min < 1e-30 => "positive".to_string(),
+            (true, false) => format!("at least {}", self.min),
+            _ => format!("at most {}", self.max),
+        };
+        let range = if range == "positive" {
+            "positive".to_string()
+        } else {
+            format!("in {range}")
+        };
+        Err(KnitError::Parameter(format!(
+            "{} must be {range}{}, not {v}",
+            self.name,
+            if self.unit.is_empty() {
+                String::new()
+            } else {
+                format!(" {}", self.unit)
+            }
+        )))
+    }
+
+    /// A count (`usize`) checked against the range.
+    pub fn check_count(&self, value: usize) -> Result<()> {
+        self.check(value as f64)
+    }
+}
+
+/// The smallest positive `f32`: the lower end of a range that only excludes zero.
+const POSITIVE: f64 = f32::MIN_POSITIVE as f64;
+
+const fn float(
+    name: &'static str,
+    label: &'static str,
+    default: f64,
+    range: (f64, f64),
+) -> Setting {
+    Setting {
+        name,
+        core_keyword: Some(name),
+        part_of: None,
+        addon_name: None,
+        label,
+        kind: Kind::Float,
+        default: Some(default),
+        addon_default: None,
+        addon_why: "",
+        min: range.0,
+        max: range.1,
+        unit: "",
+        doc: "",
+    }
+}
+
+const fn int(name: &'static str, label: &'static str, default: f64, range: (f64, f64)) -> Setting {
+    Setting {
+        kind: Kind::Int,
+        ..float(name, label, default, range)
+    }
+}
+
+const fn boolean(name: &'static str, label: &'static str, default: bool) -> Setting {
+    Setting {
+        kind: Kind::Bool,
+        ..float(name, label, if default { 1.0 } else { 0.0 }, (0.0, 1.0))
+    }
+}
+
+/// Stitches per 10 cm along a course (the gauge; 0.1 scene units).
+pub const GAUGE_STITCHES: Setting = Setting {
+    core_keyword: None,
+    part_of: Some("gauge=(stitches, rows)"),
+    unit: "stitches per 10 cm",
+    doc: "Gauge: stitches per 10 cm measured along a course (scene units are metres times \
+          the scene's unit scale)",
+    // A worsted-weight yarn on 4.5 mm needles.
+    ..float(
+        "gauge_stitches",
+        "Stitches / 10 cm",
+        20.0,
+        (POSITIVE, f64::INFINITY),
+    )
+};
+
+/// Rows per 10 cm along a wale.
+pub const GAUGE_ROWS: Setting = Setting {
+    core_keyword: None,
+    part_of: Some("gauge=(stitches, rows)"),
+    unit: "rows per 10 cm",
+    doc: "Gauge: rows (courses) per 10 cm measured along a wale",
+    ..float(
+        "gauge_rows",
+        "Rows / 10 cm",
+        28.0,
+        (POSITIVE, f64::INFINITY),
+    )
+};
+
+/// Rows of stitches (along v); the core works them out from the gauge unless given.
+pub const COURSES: Setting = Setting {
+    default: None,
+    addon_default: Some(30.0),
+    addon_why: "used only when Size is Counts; the core takes the count from the gauge \
+                unless one is given",
+    unit: "stitches",
+    doc: "Number of courses (rows of stitches) over the whole surface",
+    ..int("courses", "Courses", 0.0, (1.0, 1_000_000.0))
+};
+
+/// Columns of stitches (along u).
+pub const WALES: Setting = Setting {
+    name: "wales",
+    core_keyword: Some("wales"),
+    label: "Wales",
+    doc: "Number of wales (columns of stitches) over the whole surface",
+    ..COURSES
+};
+
+/// Yarn radius; the core works it out from the stitch width unless given.
+pub const YARN_RADIUS: Setting = Setting {
+    default: None,
+    addon_default: Some(0.0),
+    addon_why: "0 stands for the core's automatic radius (a Blender property cannot be None); \
+                the core takes None for it and refuses 0",
+    unit: "scene units",
+    doc: "Radius of the yarn in scene units; 0 = automatic, a tenth of the stitch width (the \
+          thickness the core's loop shapes are tuned for)",
+    ..float("yarn_radius", "Yarn Radius", 0.0, (0.0, f64::INFINITY))
+};
+
+pub const FLUFFINESS: Setting = Setting {
+    unit: "yarn radii",
+    doc: "How far stray fibres stand out of the yarn, as a fraction of its radius (0 = \
+          smooth tube)",
+    ..float("fluffiness", "Fluffiness", 0.5, (0.0, 4.0))
+};
+
+pub const RING_SEGMENTS: Setting = Setting {
+    unit: "vertices",
+    doc: "Vertices around the yarn's cross-section (more = rounder, heavier)",
+    ..int("ring_segments", "Ring Segments", 6.0, (3.0, 64.0))
+};
+
+pub const SAMPLES_PER_LOOP: Setting = Setting {
+    unit: "rings per stitch",
+    doc: "Rings along the yarn per stitch loop (more = smoother curves, heavier)",
+    ..int("samples_per_loop", "Samples per Loop", 16.0, (6.0, 256.0))
+};
+
+pub const TENSION: Setting = Setting {
+    doc: "Tension of the cardinal spline through each loop's key points (0 = Catmull-Rom, \
+          round loops; towards 1 = straighter segments)",
+    ..float("tension", "Spline Tension", 0.0, (0.0, 0.99))
+};
+
+/// The recursive perturbation's kappa; its upper end is where no tile can fold
+/// ([`crate::lattice::KAPPA_MAX`] explains the bound).
+pub const KAPPA: Setting = Setting {
+    addon_default: Some(0.005),
+    addon_why: "a click should look hand-knitted; a script gets the regular lattice, which \
+                tests and comparisons need",
+    doc: "How far stitches stray from a perfect grid, as hand knitting does: the kappa of \
+          the recursive perturbation (0 = machine-regular; at most 0.02, where no stitch can \
+          fold over)",
+    ..float("kappa", "Irregularity", 0.0, (0.0, 0.02))
+};
+
+pub const SEED: Setting = Setting {
+    doc: "Random seed of the stitch irregularity and fibres; the same seed gives the same \
+          knit on every machine",
+    ..int("seed", "Seed", 0.0, (0.0, f64::INFINITY))
+};
+
+pub const COLOR_VARIATION: Setting = Setting {
+    doc: "Random per-fibre brightness variation that gives yarn its fibrous look (fraction \
+          of the colour)",
+    ..float("color_variation", "Variation", 0.15, (0.0, 1.0))
+};
+
+/// Stitches at least this many pixels across are built at full quality.
+pub const DETAIL_FULL_PX: Setting = Setting {
+    core_keyword: None,
+    part_of: Some("detail_px=(full, mid, texture)"),
+    unit: "pixels",
+    doc: "Stitches at least this many pixels across in the render get the full quality set \
+          in Yarn",
+    ..float("detail_full_px", "Full Above", 12.0, (0.0, f64::INFINITY))
+};
+
+pub const DETAIL_MID_PX: Setting = Setting {
+    core_keyword: None,
+    part_of: Some("detail_px=(full, mid, texture)"),
+    unit: "pixels",
+    doc: "Stitches at least this many pixels across (and below Full Above) get half the \
+          samples and two thirds of the ring segments",
+    ..float("detail_mid_px", "Reduced Above", 5.0, (0.0, f64::INFINITY))
+};
+
+pub const DETAIL_TEXTURE_PX: Setting = Setting {
+    core_keyword: None,
+    part_of: Some("detail_px=(full, mid, texture)"),
+    unit: "pixels",
+    doc: "Stitches smaller than this many pixels are not built: the source surface wears \
+          the knitwear texture there. Between this and Reduced Above, stitches are plain \
+          tubes of 3 segments",
+    ..float(
+        "detail_texture_px",
+        "Texture Below",
+        1.0,
+        (0.0, f64::INFINITY),
+    )
+};
+
+pub const FRUSTUM_MARGIN: Setting = Setting {
+    unit: "half-frames",
+    doc: "Stitches this far outside the camera's frame (a fraction of the frame's half-size) \
+          are still built; the camera is followed over the scene's frame range (negative: \
+          stitches outside the frame are built too)",
+    ..float(
+        "frustum_margin",
+        "Frame Margin",
+        0.1,
+        (f64::NEG_INFINITY, 100.0),
+    )
+};
+
+pub const CULL_BACK_FACES: Setting = Setting {
+    addon_default: Some(1.0),
+    addon_why: "the add-on turns it on only for sources it finds closed; a script knows \
+                its own surface",
+    doc: "On a closed surface, do not build the stitches that face away from the camera in \
+          every frame (the front hides them)",
+    ..boolean("cull_back_faces", "Cull Back", false)
+};
+
+pub const CULL_HIDDEN: Setting = Setting {
+    addon_default: Some(1.0),
+    addon_why: "the add-on knits for the scene's camera; a script may look from anywhere",
+    doc: "Do not build the yarn that other yarn hides from the camera in every sampled \
+          frame (most of a knit's triangles: the back of each strand, the loops behind the \
+          fabric). Applies while the source does not animate; a moving camera is followed \
+          over the frame range",
+    ..boolean("cull_hidden", "Cull Hidden Yarn", false)
+};
+
+pub const HIDDEN_SUPERSAMPLING: Setting = Setting {
+    addon_name: Some("cull_hidden_samples"),
+    addon_default: Some(2.0),
+    addon_why: "an anti-aliased render spreads its own samples: 2 per pixel side keeps 7.7x \
+                fewer triangles at SSIM 0.985 against full detail",
+    unit: "samples per pixel side",
+    doc: "Samples per pixel side at which Cull Hidden Yarn looks for the yarn the camera \
+          sees (2: 4 samples a pixel; odd counts include the pixel centres a one-sample \
+          render looks at). More keeps the slivers between nearer strands, at more \
+          triangles and time",
+    ..int(
+        "hidden_supersampling",
+        "Visibility Samples",
+        4.0,
+        (1.0, 16.0),
+    )
+};
+
+/// Every knit setting, in the order the add-on and the README show them.
+pub const KNIT_SETTINGS: &[Setting] = &[
+    GAUGE_STITCHES,
+    GAUGE_ROWS,
+    COURSES,
+    WALES,
+    YARN_RADIUS,
+    FLUFFINESS,
+    RING_SEGMENTS,
+    SAMPLES_PER_LOOP,
+    TENSION,
+    KAPPA,
+    SEED,
+    COLOR_VARIATION,
+    DETAIL_FULL_PX,
+    DETAIL_MID_PX,
+    DETAIL_TEXTURE_PX,
+    FRUSTUM_MARGIN,
+    CULL_BACK_FACES,
+    CULL_HIDDEN,
+    HIDDEN_SUPERSAMPLING,
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_setting_is_whole_and_its_defaults_in_range() {
+        let mut names: Vec<&str> = KNIT_SETTINGS.iter().map(Setting::property).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), KNIT_SETTINGS.len(), "a name twice");
+        for s in KNIT_SETTINGS {
+            assert!(!s.doc.is_empty() && !s.label.is_empty(), "{}", s.name);
+            assert!(s.min <= s.max, "{}", s.name);
+            if let Some(d) = s.default {
+                s.check(d).unwrap();
+            }
+            if s.addon_default.is_some() {
+                assert!(!s.addon_why.is_empty(), "{}: a difference says why", s.name);
+            }
+            s.check(s.addon_value())
+                .unwrap_or_else(|e| panic!("{}: add-on default out of range: {e}", s.name));
+            if s.kind != Kind::Float {
+                assert_eq!(s.addon_value().fract(), 0.0, "{}", s.name);
+            }
+        }
+    }
+
+    #[test]
+    fn a_value_out_of_range_names_the_setting_and_its_range() {
+        let e = RING_SEGMENTS.check(2.0).unwrap_err().to_string();
+        assert!(
+            e.contains("ring_segments must be in 3..=64 vertices, not 2"),
+            "{e}"
+        );
+        let e = GAUGE_STITCHES.check(0.0).unwrap_err().to_string();
+        assert!(e.contains("gauge_stitches must be positive"), "{e}");
+        assert!(FLUFFINESS.check(f32::NAN).is_err());
+        assert!(SEED.check(1e30).is_ok());
+    }
+}
