@@ -124,9 +124,13 @@ impl Setting {
         } else {
             format!("in {range}")
         };
+        // A part of a tuple keyword is named by the keyword the caller wrote (`gauge`).
+        let who = match self.part_of {
+            Some(p) => p.split('=').next().unwrap_or(p),
+            None => self.name,
+        };
         Err(KnitError::Parameter(format!(
-            "{} must be {range}{}, not {v}",
-            self.name,
+            "{who} must be {range}{}, not {v}",
             if self.unit.is_empty() {
                 String::new()
             } else {
@@ -433,8 +437,8 @@ mod tests {
             e.contains("ring_segments must be in 3..=64 vertices, not 2"),
             "{e}"
         );
-        let e = GAUGE_STITCHES.check(0.0).unwrap_err().to_string();
-        assert!(e.contains("gauge_stitches must be positive"), "{e}");
+        let e = GAUGE_ROWS.check(0.0).unwrap_err().to_string();
+        assert!(e.contains("gauge must be positive rows per 10 cm"), "{e}");
         assert!(FLUFFINESS.check(f32::NAN).is_err());
         assert!(SEED.check(1e30).is_ok());
     }

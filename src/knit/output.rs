@@ -1,0 +1,108 @@
+//! What a knit returns: flat buffers in the dtypes Blender's `foreach_set` takes, and the
+//! figures about them.
+
+use glam::Vec3;
+
+use super::*;
+
+/// Figures about a knit.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct KnitStats {
+    pub courses: usize,
+    pub wales: usize,
+    /// Stitches built.
+    pub stitches: usize,
+    /// Stitches not built because part of them had no surface (outside every UV island).
+    pub stitches_skipped: usize,
+    /// Built stitches whose normal offsets were clamped because the surface curves more
+    /// tightly there than the offsets reach (a thin tube, a sharp crease; see
+    /// [`crate::skeleton::curvature`]). Counted per build (the pose decides it), so 0 in
+    /// [`PreparedKnit::stats`].
+    pub stitches_clamped: usize,
+    pub vertices: usize,
+    pub triangles: usize,
+    pub yarn_pieces: usize,
+    /// Stitch width and height measured on the surface (scene units).
+    pub stitch_width: f32,
+    pub stitch_height: f32,
+    /// Clearance of the tuned offsets on a flat patch, in yarn diameters.
+    pub flat_clearance: f32,
+    /// Clearance of this result (min, 1st percentile) in diameters, if measured.
+    pub clearance: Option<(f32, f32)>,
+    /// The interlock of this result, if measured (with the clearance): crossings between a
+    /// course and the loops it is pulled through, and how many of them have the yarn the
+    /// pattern says in front ([`crate::skeleton::crossings`]). Equal numbers: every course
+    /// interlocks with the one below, stitch by stitch.
+    pub interlock: Option<(usize, usize)>,
+    /// Seconds spent in the core.
+    pub seconds: f64,
+    /// A key of the mesh topology (triangles, edges, their order): equal keys mean identical
+    /// `triangles`, `edges` and `corner_edges` buffers, so a consumer holding a mesh with this
+    /// key need only rewrite positions and colours. It depends on the yarn pieces' lengths,
+    /// whether they are closed, and the ring segments; never on positions or random choices
+    /// (each triangle owns its apex vertex, so the random apex picks move vertices only).
+    pub topology_key: u64,
+    /// Stitches at each [`Level`] (full, mid, far, texture, culled), of the `stitches` that
+    /// have a surface. Without camera-driven detail all are full.
+    pub levels: [usize; 5],
+    /// Triangles the same knit has with every stitch at full quality (equal to `triangles`
+    /// without camera-driven detail).
+    pub triangles_full_detail: usize,
+    /// Triangles culled as hidden behind other yarn from every view (`cull_hidden`; 0
+    /// without). `triangles` are those left.
+    pub triangles_hidden: usize,
+}
+
+/// A knit, in flat buffers.
+#[derive(Debug, Clone, Default)]
+pub struct KnitOutput {
+    /// `(V, 3)` vertex positions, scene units, the surface's object space.
+    pub positions: Vec<f32>,
+    /// `(V, 4)` linear RGBA.
+    pub colors: Vec<f32>,
+    /// `(T, 3)` vertex indices.
+    pub triangles: Vec<i32>,
+    /// `(3T,)` edge from corner k to corner k+1 of each triangle.
+    pub corner_edges: Vec<i32>,
+    /// `(E, 2)` vertex indices.
+    pub edges: Vec<i32>,
+    /// `(P, 3)` yarn centreline samples.
+    pub centerline: Vec<f32>,
+    /// `(Y + 1,)`: yarn piece `i` is samples `offsets[i]..offsets[i + 1]`.
+    pub yarn_offsets: Vec<i64>,
+    /// `(Y,)` the course of each yarn piece.
+    pub yarn_course: Vec<i32>,
+    /// `(Y,)` whether each yarn piece is closed (a whole course round a cyclic-u surface).
+    pub yarn_closed: Vec<bool>,
+    /// `(V, 3)` unit vertex normals of the knit with its hidden yarn culled: the whole
+    /// knit's smooth normals (Blender's: angle-weighted face normals), which the culled
+    /// mesh's own triangles no longer give. Empty without `cull_hidden`.
+    pub normals: Vec<f32>,
+    pub yarn_radius: f32,
+    pub stats: KnitStats,
+}
+
+/// One yarn piece's centreline in (u, v, lambda): see [`PreparedKnit::uv_centrelines`].
+#[derive(Debug, Clone)]
+pub struct UvYarn {
+    /// Samples in (u, v, lambda); u may run past the domain on a cyclic-u surface.
+    pub points: Vec<Vec3>,
+    /// (course, wale) of the stitch each sample belongs to.
+    pub stitches: Vec<(usize, usize)>,
+    /// A whole course round a cyclic-u surface: the last sample joins the first moved by
+    /// `period_u` along u.
+    pub closed: bool,
+    /// The domain's width in u (the period of a cyclic u).
+    pub period_u: f32,
+}
+
+/// Clearance (min, p01) of a finished knit, in yarn diameters.
+pub fn measure(out: &KnitOutput) -> (f32, f32) {
+    let pieces: Vec<(usize, usize, bool)> = out
+        .yarn_offsets
+        .windows(2)
+        .zip(&out.yarn_closed)
+        .map(|(w, &closed)| (w[0] as usize, w[1] as usize, closed))
+        .collect();
+    crate::metrics::yarn_clearance(vec3_slice(&out.centerline), &pieces, out.yarn_radius)
+}

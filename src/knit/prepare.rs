@@ -1,0 +1,508 @@
+//! Binding a knit to its surface's (u,v) layout once: counts, yarn radius, stitch size,
+//! offsets, lattice, detail levels and the budget check ([`PreparedKnit::new`]).
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use super::*;
+use crate::budget::{self, OutputSize};
+use crate::detail::{piece_spans, stitch_levels, Level, LevelSettings, Span};
+use crate::error::{KnitError, Result};
+use crate::geometry::{bundle_counts, BundleCounts, BundleSettings};
+use crate::lattice::{Lattice, ROW_OVERHANG};
+use crate::parallel::run_in_pool;
+use crate::pattern::{ColorPattern, StitchPattern};
+use crate::skeleton::{
+    built_stitches, sample_piece_uv, tuning, yarn_pieces, NormalOffsets, SplineSampling, YarnPiece,
+};
+use crate::surface::{Surface, UvRect};
+
+/// Stitch counts from explicit counts or the gauge and the surface's extent. Along a cyclic
+/// direction a count from the gauge is rounded to whole repeats of the pattern (and of the
+/// colour chart, where a whole number of both fits), as a knitter casts on in the round;
+/// counts given explicitly are kept as given. Also returns how much wider a stitch is for the
+/// rounding (the gauge's count over the rounded one), which the default yarn does not follow:
+/// the gauge fixes the yarn, and rounding only stretches or gathers the stitches round.
+pub(super) fn stitch_counts(
+    surface: &dyn Surface,
+    pattern: &StitchPattern,
+    p: &KnitParams,
+) -> Result<(usize, usize, f32)> {
+    let gauge = p.gauge.unwrap_or(DEFAULT_GAUGE);
+    let (courses, wales) =
+        crate::gauge::stitch_counts(surface.extent(), gauge, p.courses, p.wales)?;
+    let colors = p.colors.as_ref().filter(|_| p.color_image.is_none());
+    let repeat = |stitch: usize, color: Option<usize>, count: usize| {
+        let both = color.map_or(stitch, |c| crate::pattern::lcm(stitch, c));
+        if both <= count {
+            both
+        } else {
+            stitch
+        }
+    };
+    let gauge_wales = wales;
+    let rounded = if surface.cyclic_u() && p.wales.is_none() {
+        let r = repeat(pattern.width(), colors.map(ColorPattern::width), wales);
+        crate::gauge::whole_repeats(wales, r)
+    } else {
+        wales
+    };
+    let courses = if surface.cyclic_v() && p.courses.is_none() {
+        let r = repeat(pattern.height(), colors.map(ColorPattern::height), courses);
+        crate::gauge::whole_repeats(courses, r)
+    } else {
+        courses
+    };
+    Ok((courses, rounded, gauge_wales as f32 / rounded.max(1) as f32))
+}
+
+/// The most samples-per-loop multiple any piece of `pattern` can get.
+pub(super) fn densest(pattern: &StitchPattern) -> usize {
+    let lean = (0..pattern.height())
+        .flat_map(|r| (0..pattern.width()).map(move |w| (r, w)))
+        .map(|(r, w)| pattern.stitch(r, w).land_offset.unsigned_abs() as usize)
+        .max()
+        .unwrap_or(0);
+    crate::skeleton::sampling_density::density(lean)
+}
+
+/// The pieces of yarn of every course over the stitches `built`, each sampled as densely as
+/// its loops need ([`crate::skeleton::sampling_density`]).
+pub(super) fn course_pieces(
+    lattice: &Lattice,
+    built: &[bool],
+    pattern: &StitchPattern,
+) -> Vec<YarnPiece> {
+    let mut pieces = yarn_pieces(lattice, built);
+    crate::skeleton::sampling_density(&mut pieces, lattice, pattern);
+    pieces
+}
+
+/// `pieces` and the extra pieces of yarn the pattern asks for: the balls of its bobbles
+/// ([`crate::skeleton::bobbles`]) and, for a palette colour chart (not an image), the floats
+/// of stranded colourwork ([`crate::skeleton::floats`]).
+pub(super) fn with_extras(
+    mut pieces: Vec<YarnPiece>,
+    lattice: &Lattice,
+    built: &[bool],
+    pattern: &StitchPattern,
+    p: &KnitParams,
+) -> Vec<YarnPiece> {
+    pieces.extend(crate::skeleton::bobbles::bobble_pieces(
+        lattice, built, pattern,
+    ));
+    if let (Some(colors), None) = (&p.colors, &p.color_image) {
+        pieces.extend(crate::skeleton::floats::float_pieces(
+            lattice, built, colors,
+        ));
+    }
+    pieces
+}
+
+/// See [`KnitStats::topology_key`]: a SplitMix64 chain over the structure that fixes the
+/// buffers' layout.
+pub(super) fn topology_key(ring_segments: usize, pieces: &[YarnPiece], samples: &[usize]) -> u64 {
+    let mix = |h: u64, x: u64| crate::geometry::stitch_seed(h, x as usize, 0x4b4e_4954);
+    let mut h = mix(0x6b6e_6974_7765_6172, ring_segments as u64);
+    h = mix(h, pieces.len() as u64);
+    for (pc, &n) in pieces.iter().zip(samples) {
+        h = mix(h, ((n as u64) << 1) | pc.closed as u64);
+    }
+    h
+}
+
+/// The topology key with camera-driven detail: the spans' ring counts, closure and ring
+/// segments (see [`KnitStats::topology_key`]).
+pub(super) fn detail_topology_key(spans: &[Span], level_bundle: &[BundleSettings; 3]) -> u64 {
+    let mix = |h: u64, x: u64| crate::geometry::stitch_seed(h, x as usize, 0x4c4f_4421);
+    let mut h = mix(0x6b6e_6974_6465_7461, spans.len() as u64);
+    for sp in spans {
+        let m = level_bundle[sp.level as usize].ring_segments as u64;
+        h = mix(h, ((sp.rings as u64) << 8) | (m << 1) | sp.closed as u64);
+    }
+    h
+}
+
+/// A whole piece as one full-quality span.
+pub(super) fn whole_piece_span(i: usize, pc: &YarnPiece, samples_per_loop: usize) -> Span {
+    let n = pc.sample_count(samples_per_loop);
+    Span {
+        piece: i,
+        first: 0,
+        last: if pc.closed { n } else { n.saturating_sub(1) },
+        rings: n,
+        closed: pc.closed,
+        level: Level::Full,
+    }
+}
+
+/// The runs of one level along a piece: `(first sample, level)` in yarn order, a new run
+/// where the owning stitch's level changes (at the first sample of that stitch, where the
+/// two spans will share a ring). A closed piece of one level gives one run at sample 0.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn level_runs(
+    surface: &dyn Surface,
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    offsets: &NormalOffsets,
+    sampling: &SplineSampling,
+    pc: &YarnPiece,
+    levels: &[Level],
+    samples_per_loop: usize,
+) -> Vec<(usize, Level)> {
+    let wales = lattice.wales;
+    let level_of = |j: usize| levels[pc.course * wales + (pc.first_wale + j) % wales];
+    let first = level_of(0);
+    if (1..pc.stitches).all(|j| level_of(j) == first) {
+        return vec![(0, first)];
+    }
+    // Which stitch each sample belongs to, as the build samples it.
+    let n = pc.sample_count(samples_per_loop);
+    let mut uvl = vec![Vec3::ZERO; n];
+    let mut owner = vec![0u32; n];
+    sample_piece_uv(
+        surface, lattice, pattern, offsets, sampling, pc, &mut uvl, &mut owner,
+    );
+    let level_at = |k: usize| level_of(owner[k] as usize);
+    let mut runs = Vec::new();
+    for k in 0..n {
+        let here = level_at(k);
+        let starts = if k == 0 {
+            !pc.closed || level_at(n - 1) != here
+        } else {
+            level_at(k - 1) != here
+        };
+        if starts {
+            runs.push((k, here));
+        }
+    }
+    runs
+}
+
+impl PreparedKnit {
+    /// Validates the settings, fixes counts, radius and offsets from `surface`, lays out the
+    /// lattice and checks the output against the budget (before anything large is allocated).
+    pub fn new(surface: &dyn Surface, pattern: &StitchPattern, p: &KnitParams) -> Result<Self> {
+        validate(p)?;
+        let (len_u, len_v) = surface.extent();
+        if !(len_u.is_finite() && len_v.is_finite() && len_u > 0.0 && len_v > 0.0) {
+            return Err(KnitError::Surface(format!(
+                "the surface has no extent to knit over (lengths {len_u} x {len_v} along u \
+                 and v)"
+            )));
+        }
+        let (courses, wales, widened) = stitch_counts(surface, pattern, p)?;
+        let m = p.ring_segments;
+        let s = p.samples_per_loop;
+        let stitches = courses as u64 * wales as u64;
+        budget::check(
+            &OutputSize::upper_bound(stitches, (s * densest(pattern)) as u64, m as u64),
+            p.budget_bytes,
+            stitches,
+        )?;
+
+        let cyclic_v = surface.cyclic_v();
+        let domain = surface.domain();
+        let cyclic = (surface.cyclic_u(), cyclic_v);
+        let base = Lattice::perturbed(domain, courses, wales, cyclic.0, cyclic.1, p.kappa, p.seed)?;
+        // The mean stitch, which the default yarn follows.
+        let mean = (
+            len_u / wales as f32,
+            if cyclic_v {
+                len_v / courses as f32
+            } else {
+                len_v / (courses as f32 + 2.0 * ROW_OVERHANG)
+            },
+        );
+        let (stitch_width, stitch_height) = match p.stitch_size {
+            Some(size) => size,
+            None => {
+                let (rw, rh) = run_in_pool(p.threads, || {
+                    crate::tight_stitches::tight_ratios(surface, &base)
+                })?;
+                (mean.0 * rw, mean.1 * rh)
+            }
+        };
+        let yarn_width = p.stitch_size.map_or(mean.0, |s| s.0);
+        let radius = p
+            .yarn_radius
+            .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * yarn_width / widened);
+        let (check_w, check_h) = p.stitch_size.unwrap_or(mean);
+        if 2.0 * radius > check_w.min(2.0 * check_h) {
+            return Err(KnitError::Parameter(format!(
+                "the yarn ({:.4} thick) is thicker than a stitch ({check_w:.4} x \
+                 {check_h:.4}): use a thinner yarn or fewer stitches",
+                2.0 * radius
+            )));
+        }
+        let (offsets, flat_clearance, per_lean) = tuning::tuned_offsets(
+            pattern,
+            stitch_width,
+            stitch_height,
+            2.0 * radius,
+            p.tension,
+        );
+
+        // Wales whose edge cuts a crossing or a decrease are knitted straight, with a relief
+        // made for the pattern straightened.
+        let straight_wales: Vec<bool> = if pattern.has_crossings() {
+            (0..base.wales)
+                .map(|w| !crate::skeleton::stitch_shape::wale_knits_whole(&base, pattern, w))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let offsets = if !straight_wales.contains(&true) {
+            offsets
+        } else if base.cyclic_u {
+            // Round a seam (explicit counts that are not whole repeats): no edge corrections,
+            // which a flat strip cannot make across the seam.
+            let straight = tuning::straight_offsets(
+                pattern,
+                stitch_width,
+                stitch_height,
+                2.0 * radius,
+                p.tension,
+            );
+            offsets.with_straight(straight, straight_wales)
+        } else {
+            tuning::offsets_with_straight_wales(
+                pattern,
+                stitch_width,
+                stitch_height,
+                2.0 * radius,
+                p.tension,
+                straight_wales,
+            )
+        };
+        let (width_d, height_d) = tuning::proportions(stitch_width, stitch_height, 2.0 * radius);
+        let lattice =
+            crate::skeleton::leaning_rows::shaped(base, pattern, width_d, height_d, per_lean);
+        let sampling = SplineSampling {
+            samples_per_loop: s,
+            tension: p.tension,
+        };
+        let bundle = BundleSettings {
+            radius,
+            ring_segments: m,
+            fluffiness: p.fluffiness,
+            color_variation: p.color_variation,
+            seed: p.seed,
+        };
+        // Full-detail pieces first: their triangles are the figure detail is measured against.
+        let (full_pieces, built, built_count) = run_in_pool(p.threads, || {
+            let built = built_stitches(surface, &lattice);
+            let count = built.iter().filter(|b| **b).count();
+            (
+                with_extras(
+                    course_pieces(&lattice, &built, pattern),
+                    &lattice,
+                    &built,
+                    pattern,
+                    p,
+                ),
+                built,
+                count,
+            )
+        })?;
+        let triangles_full_detail: usize = full_pieces
+            .iter()
+            .map(|pc| bundle_counts(pc.sample_count(s), m, pc.closed).triangles)
+            .sum();
+        let full = LevelSettings {
+            samples_per_loop: s,
+            ring_segments: m,
+            fluffiness: p.fluffiness,
+        };
+        let (pieces, levels, spans) = match &p.detail {
+            None => {
+                let spans = full_pieces
+                    .iter()
+                    .enumerate()
+                    .map(|(i, pc)| whole_piece_span(i, pc, s))
+                    .collect();
+                (full_pieces, None, spans)
+            }
+            Some(d) => run_in_pool(p.threads, || -> Result<_> {
+                // The yarn stands off the surface by its offsets (at most about a diameter)
+                // plus its radius and fluff.
+                let reach = radius * (3.0 + p.fluffiness);
+                let levels = stitch_levels(surface, &lattice, &built, d, reach)?;
+                let kept: Vec<bool> = levels.iter().map(|l| l.is_built()).collect();
+                let pieces = with_extras(
+                    course_pieces(&lattice, &kept, pattern),
+                    &lattice,
+                    &kept,
+                    pattern,
+                    p,
+                );
+                let spl = |level: Level| d.level_settings(level, full).samples_per_loop;
+                let spans: Vec<Span> = pieces
+                    .par_iter()
+                    .enumerate()
+                    .map(|(i, pc)| {
+                        let runs = level_runs(
+                            surface, &lattice, pattern, &offsets, &sampling, pc, &levels, s,
+                        );
+                        piece_spans(i, pc.sample_count(s), pc.closed, &runs, s, spl)
+                    })
+                    .flatten()
+                    .collect();
+                Ok((pieces, Some(levels), spans))
+            })??,
+        };
+        let samples: Vec<usize> = pieces.iter().map(|pc| pc.sample_count(s)).collect();
+        let piece_start: Vec<usize> = samples
+            .iter()
+            .scan(0usize, |acc, &n| {
+                *acc += n;
+                Some(*acc - n)
+            })
+            .collect();
+        let level_bundle = [Level::Full, Level::Mid, Level::Far].map(|level| {
+            let q = p
+                .detail
+                .as_ref()
+                .map_or(full, |d| d.level_settings(level, full));
+            BundleSettings {
+                ring_segments: q.ring_segments,
+                fluffiness: q.fluffiness,
+                ..bundle
+            }
+        });
+        let counts: Vec<BundleCounts> = spans
+            .iter()
+            .map(|sp| {
+                bundle_counts(
+                    sp.rings,
+                    level_bundle[sp.level as usize].ring_segments,
+                    sp.closed,
+                )
+            })
+            .collect();
+        let total = OutputSize {
+            vertices: counts.iter().map(|c| c.vertices as u64).sum(),
+            triangles: counts.iter().map(|c| c.triangles as u64).sum(),
+            edges: counts.iter().map(|c| c.edges as u64).sum(),
+            samples: samples.iter().map(|&n| n as u64).sum(),
+        };
+        let built_yarn: u64 = pieces.iter().map(|pc| pc.stitches as u64).sum();
+        budget::check(&total, p.budget_bytes, built_yarn)?;
+
+        let mut level_counts = [0usize; 5];
+        match &levels {
+            None => level_counts[0] = built_count,
+            Some(levels) => {
+                for (l, b) in levels.iter().zip(&built) {
+                    level_counts[*l as usize] += usize::from(*b);
+                }
+            }
+        }
+        let topology_key = match &levels {
+            None => topology_key(m, &pieces, &samples),
+            Some(_) => detail_topology_key(&spans, &level_bundle),
+        };
+        let stats = KnitStats {
+            courses,
+            wales,
+            stitches: built_count,
+            stitches_skipped: courses * wales - built_count,
+            vertices: total.vertices as usize,
+            triangles: total.triangles as usize,
+            yarn_pieces: pieces.len(),
+            stitch_width,
+            stitch_height,
+            flat_clearance,
+            topology_key,
+            levels: level_counts,
+            triangles_full_detail,
+            ..Default::default()
+        };
+        let mut prepared = Self {
+            params: p.clone(),
+            pattern: pattern.clone(),
+            lattice,
+            pieces,
+            offsets,
+            sampling,
+            samples,
+            piece_start,
+            spans,
+            level_bundle,
+            counts,
+            levels,
+            total,
+            domain,
+            cyclic,
+            stats,
+            radius,
+            hidden: None,
+            first_build: FirstBuild::default(),
+        };
+        if let Some(d) = p.detail.as_ref().filter(|d| d.cull_hidden) {
+            prepared.cull_hidden(surface, d)?;
+        }
+        Ok(prepared)
+    }
+
+    /// Figures known before building (counts, sizes, topology key); `seconds` and
+    /// `clearance` are left empty.
+    pub fn stats(&self) -> &KnitStats {
+        &self.stats
+    }
+
+    /// The yarn radius, scene units.
+    pub fn yarn_radius(&self) -> f32 {
+        self.radius
+    }
+
+    /// Vertices of every build: the length of [`positions_into`](Self::positions_into)'s
+    /// buffer is three times this.
+    pub fn vertex_count(&self) -> usize {
+        self.hidden
+            .as_ref()
+            .map_or(self.total.vertices as usize, |h| h.subset.vertex_count())
+    }
+
+    /// The linear RGB colour of stitch (course, wale) before the random brightness
+    /// variation: from the colour image, else the colour pattern, else the default yarn.
+    pub fn stitch_color(&self, course: usize, wale: usize) -> [f32; 3] {
+        match (&self.params.color_image, &self.params.colors) {
+            (Some(img), _) => img.sample(self.lattice.tile_center(course, wale)),
+            (None, Some(c)) => c.color(course, wale),
+            (None, None) => DEFAULT_YARN_COLOR,
+        }
+    }
+
+    /// The level of every stitch (row-major, course by wale: `courses * wales`) with
+    /// camera-driven detail; `None` without (every stitch full). Stitches with no surface
+    /// under them are [`Level::Culled`].
+    pub fn stitch_levels(&self) -> Option<&[Level]> {
+        self.levels.as_deref()
+    }
+
+    /// The bundles built, in output order: which piece, which samples, which level.
+    pub fn spans(&self) -> &[Span] {
+        &self.spans
+    }
+
+    /// Ring segments of a built level.
+    pub fn ring_segments(&self, level: Level) -> usize {
+        self.level_bundle[(level as usize).min(2)].ring_segments
+    }
+
+    /// The settings this knit was prepared with.
+    pub fn params(&self) -> &KnitParams {
+        &self.params
+    }
+
+    /// The stitch lattice (perturbed by `kappa`), in the surface's (u,v) domain.
+    pub fn lattice(&self) -> &Lattice {
+        &self.lattice
+    }
+
+    /// The (u,v) domain the knit was prepared for.
+    pub fn domain(&self) -> UvRect {
+        self.domain
+    }
+}
