@@ -107,6 +107,28 @@ pub fn clearance(
     }
 }
 
+/// The clearance every knit reports, `(min, p01)` in yarn diameters (DESIGN.md section 7):
+/// [`clearance`] of the yarn pieces `pieces` (first point, end point, closed) of `points`
+/// (scene units) with yarn of `radius`, at the default neighbour exclusion and a cap of 3
+/// diameters. Ranges past the end are cut to it.
+pub fn yarn_clearance(points: &[Vec3], pieces: &[(usize, usize, bool)], radius: f32) -> (f32, f32) {
+    let n = points.len();
+    let yarns: Vec<YarnPolyline> = pieces
+        .iter()
+        .map(|&(a, b, closed)| YarnPolyline {
+            points: &points[a.min(n)..b.clamp(a.min(n), n)],
+            closed,
+        })
+        .collect();
+    let c = clearance(
+        &yarns,
+        2.0 * radius,
+        DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
+        3.0,
+    );
+    (c.min, c.p01)
+}
+
 /// Each segment's clearance in diameters, capped at `cap`, in order: yarn by yarn, segment
 /// `k` of a yarn joining its points `k` and `k + 1` (the last of a closed yarn joining its
 /// last point to the first; a closed yarn of two points has one segment). The per-segment

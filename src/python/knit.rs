@@ -1,0 +1,437 @@
+//! `Knit` and `KnitResult`: a knit bound to its surface, its keyword settings, and the
+//! buffers it returns.
+
+use std::sync::Arc;
+
+use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::knit::{ColorImage, KnitOutput, KnitParams, PreparedKnit};
+
+use super::*;
+
+/// The result of a knit: NumPy arrays ready for Blender's `foreach_set`.
+#[pyclass(name = "KnitResult", module = "knitwear", frozen)]
+pub struct PyKnitResult {
+    #[pyo3(get)]
+    pub(crate) vertices: Py<PyAny>,
+    #[pyo3(get)]
+    pub(crate) triangles: Py<PyAny>,
+    #[pyo3(get)]
+    pub(crate) edges: Py<PyAny>,
+    #[pyo3(get)]
+    pub(crate) corner_edges: Py<PyAny>,
+    #[pyo3(get)]
+    pub(crate) colors: Py<PyAny>,
+    #[pyo3(get)]
+    pub(crate) centerline_points: Py<PyAny>,
+    #[pyo3(get)]
+    pub(crate) course_offsets: Py<PyAny>,
+    #[pyo3(get)]
+    pub(crate) yarn_course: Py<PyAny>,
+    #[pyo3(get)]
+    pub(crate) yarn_closed: Py<PyAny>,
+    #[pyo3(get)]
+    pub(crate) yarn_radius: f32,
+    /// `(V, 3)` vertex normals of a knit that culls its hidden yarn (the whole knit's smooth
+    /// normals), else None.
+    #[pyo3(get)]
+    pub(crate) normals: Option<Py<PyAny>>,
+    #[pyo3(get)]
+    pub(crate) stats: Py<PyDict>,
+}
+
+#[pymethods]
+impl PyKnitResult {
+    fn __repr__(&self, py: Python<'_>) -> String {
+        format!(
+            "KnitResult({})",
+            self.stats
+                .bind(py)
+                .repr()
+                .map(|r| r.to_string())
+                .unwrap_or_default()
+        )
+    }
+}
+
+pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResult> {
+    let s = &out.stats;
+    let stats = PyDict::new(py);
+    stats.set_item("courses", s.courses)?;
+    stats.set_item("wales", s.wales)?;
+    stats.set_item("stitches", s.stitches)?;
+    stats.set_item("stitches_skipped", s.stitches_skipped)?;
+    stats.set_item("stitches_clamped", s.stitches_clamped)?;
+    stats.set_item("vertices", s.vertices)?;
+    stats.set_item("triangles", s.triangles)?;
+    stats.set_item("yarn_pieces", s.yarn_pieces)?;
+    stats.set_item("stitch_width", s.stitch_width)?;
+    stats.set_item("stitch_height", s.stitch_height)?;
+    stats.set_item("flat_clearance", s.flat_clearance)?;
+    stats.set_item("clearance_min", s.clearance.map(|c| c.0))?;
+    stats.set_item("clearance_p01", s.clearance.map(|c| c.1))?;
+    stats.set_item("interlock", s.interlock)?;
+    stats.set_item("seconds", s.seconds)?;
+    stats.set_item("topology_key", s.topology_key)?;
+    let levels = PyDict::new(py);
+    for level in crate::detail::Level::ALL {
+        levels.set_item(level.name(), s.levels[level as usize])?;
+    }
+    stats.set_item("levels", levels)?;
+    stats.set_item("triangles_full_detail", s.triangles_full_detail)?;
+    stats.set_item("triangles_hidden", s.triangles_hidden)?;
+    let yarn_radius = out.yarn_radius;
+    let normals = if out.normals.is_empty() {
+        None
+    } else {
+        Some(rows(py, out.normals, 3)?)
+    };
+    Ok(PyKnitResult {
+        normals,
+        vertices: rows(py, out.positions, 3)?,
+        triangles: rows(py, out.triangles, 3)?,
+        edges: rows(py, out.edges, 2)?,
+        corner_edges: flat(py, out.corner_edges),
+        colors: rows(py, out.colors, 4)?,
+        centerline_points: rows(py, out.centerline, 3)?,
+        course_offsets: flat(py, out.yarn_offsets),
+        yarn_course: flat(py, out.yarn_course),
+        yarn_closed: flat(py, out.yarn_closed),
+        yarn_radius,
+        stats: stats.unbind(),
+    })
+}
+
+/// The keyword settings of `Knit` (and so of `knitwear.knit`), checked and turned into core
+/// params.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn params_from(
+    courses: Option<i64>,
+    wales: Option<i64>,
+    gauge: Option<(f32, f32)>,
+    yarn_radius: Option<f32>,
+    stitch_size: Option<(f32, f32)>,
+    fluffiness: f32,
+    ring_segments: i64,
+    samples_per_loop: i64,
+    tension: f32,
+    kappa: f32,
+    seed: u64,
+    colors: Option<&Bound<'_, PyColorPattern>>,
+    color_image: Option<&Bound<'_, PyAny>>,
+    color_variation: f32,
+    threads: Option<i64>,
+    budget_bytes: Option<u64>,
+    measure_clearance: bool,
+) -> PyResult<KnitParams> {
+    let count = |name: &str, v: Option<i64>| -> PyResult<Option<usize>> {
+        match v {
+            None => Ok(None),
+            Some(n) if n >= 1 => Ok(Some(usize::try_from(n).unwrap_or(usize::MAX))),
+            Some(n) => Err(ParameterError::new_err(format!(
+                "{name} must be at least 1, not {n}"
+            ))),
+        }
+    };
+    let positive = |name: &str, v: i64| -> PyResult<usize> {
+        usize::try_from(v)
+            .map_err(|_| ParameterError::new_err(format!("{name} must not be negative, not {v}")))
+    };
+    let image = match color_image {
+        None => None,
+        Some(obj) => {
+            let arr = obj.cast::<PyArrayDyn<f32>>().map_err(|_| {
+                ParameterError::new_err(
+                    "color_image must be a float32 array (height, width, 3 or 4)",
+                )
+            })?;
+            let ro = arr.readonly();
+            let dims = ro.shape().to_vec();
+            if dims.len() != 3 {
+                return Err(ParameterError::new_err(format!(
+                    "color_image must have shape (height, width, 3 or 4), not {dims:?}"
+                )));
+            }
+            let not_c = || ParameterError::new_err("color_image must be C-contiguous");
+            if !ro.is_c_contiguous() {
+                return Err(not_c());
+            }
+            let data = ro.as_slice().map_err(|_| not_c())?.to_vec();
+            Some(ColorImage::new(dims[1], dims[0], dims[2], data).map_err(to_py)?)
+        }
+    };
+    let params = KnitParams {
+        courses: count("courses", courses)?,
+        wales: count("wales", wales)?,
+        gauge,
+        yarn_radius,
+        fluffiness,
+        ring_segments: positive("ring_segments", ring_segments)?,
+        samples_per_loop: positive("samples_per_loop", samples_per_loop)?,
+        tension,
+        kappa,
+        seed,
+        colors: colors.map(|c| c.get().inner.clone()),
+        color_image: image,
+        color_variation,
+        threads: match threads {
+            None => None,
+            Some(t) => Some(positive("threads", t)?),
+        },
+        budget_bytes: budget_bytes.unwrap_or(crate::budget::DEFAULT_BUDGET_BYTES),
+        measure_clearance,
+        stitch_size,
+        detail: None,
+    };
+    Ok(params)
+}
+
+/// A knit bound to its surface's (u,v) layout: counts, yarn radius, stitch size, offsets,
+/// lattice and buffer layout fixed once, so that `build` and `positions` give the same
+/// topology for the surface in any pose (an animated, deformed source).
+#[pyclass(name = "Knit", module = "knitwear", frozen)]
+pub struct PyKnit {
+    pub(crate) inner: Arc<PreparedKnit>,
+}
+
+#[pymethods]
+impl PyKnit {
+    #[new]
+    #[pyo3(signature = (
+        surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
+        stitch_size=None, fluffiness=0.5, ring_segments=6, samples_per_loop=16, tension=0.0,
+        kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
+        budget_bytes=None, measure_clearance=false, camera=None, stitch_levels=None, detail_px=None,
+        mid_quality=None, far_quality=None, frustum_margin=0.1, cull_back_faces=false,
+        cull_hidden=false, hidden_supersampling=4, seen_triangles=None
+    ))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        surface: &Bound<'_, PyAny>,
+        pattern: &Bound<'_, PyPattern>,
+        courses: Option<i64>,
+        wales: Option<i64>,
+        gauge: Option<(f32, f32)>,
+        yarn_radius: Option<f32>,
+        stitch_size: Option<(f32, f32)>,
+        fluffiness: f32,
+        ring_segments: i64,
+        samples_per_loop: i64,
+        tension: f32,
+        kappa: f32,
+        seed: u64,
+        colors: Option<&Bound<'_, PyColorPattern>>,
+        color_image: Option<&Bound<'_, PyAny>>,
+        color_variation: f32,
+        threads: Option<i64>,
+        budget_bytes: Option<u64>,
+        measure_clearance: bool,
+        camera: Option<&Bound<'_, detail::PyCamera>>,
+        stitch_levels: Option<&Bound<'_, PyAny>>,
+        detail_px: Option<(f32, f32, f32)>,
+        mid_quality: Option<(i64, i64, bool)>,
+        far_quality: Option<(i64, i64, bool)>,
+        frustum_margin: f32,
+        cull_back_faces: bool,
+        cull_hidden: bool,
+        hidden_supersampling: u32,
+        seen_triangles: Option<Vec<u8>>,
+    ) -> PyResult<Self> {
+        let surf = AnySurface::from_py(surface)?;
+        let mut params = params_from(
+            courses,
+            wales,
+            gauge,
+            yarn_radius,
+            stitch_size,
+            fluffiness,
+            ring_segments,
+            samples_per_loop,
+            tension,
+            kappa,
+            seed,
+            colors,
+            color_image,
+            color_variation,
+            threads,
+            budget_bytes,
+            measure_clearance,
+        )?;
+        params.detail = detail::detail_from(
+            camera,
+            stitch_levels,
+            detail_px,
+            mid_quality,
+            far_quality,
+            frustum_margin,
+            cull_back_faces,
+            cull_hidden,
+            hidden_supersampling,
+            seen_triangles,
+        )?;
+        let pattern = pattern.get().inner.clone();
+        let inner = guarded(py, move || {
+            PreparedKnit::new(surf.as_dyn(), &pattern, &params)
+        })?;
+        Ok(Self {
+            inner: Arc::new(inner),
+        })
+    }
+
+    /// The whole result for `surface` (the one knitted, or it deformed).
+    fn build(&self, py: Python<'_>, surface: &Bound<'_, PyAny>) -> PyResult<PyKnitResult> {
+        let surf = AnySurface::from_py(surface)?;
+        let knit = self.inner.clone();
+        let out = guarded(py, move || knit.build(surf.as_dyn()))?;
+        to_result(py, out)
+    }
+
+    /// The interlock-topology metric on `surface`: `(decided, agree, undecided)` crossings,
+    /// where `agree` of the `decided` ones have in front the yarn the pattern says.
+    fn crossing_order(
+        &self,
+        py: Python<'_>,
+        surface: &Bound<'_, PyAny>,
+    ) -> PyResult<(usize, usize, usize)> {
+        let surf = AnySurface::from_py(surface)?;
+        let knit = self.inner.clone();
+        let c = guarded(py, move || knit.crossing_order(surf.as_dyn()))?;
+        Ok((c.decided, c.agree, c.undecided))
+    }
+
+    /// Vertex positions only, `(V, 3)` float32, for `surface` in a new pose: bit-identical
+    /// to `build(surface).vertices`. With `out` (a writable C-contiguous float32 `(V, 3)`
+    /// array) they are written there and `out` is returned: no allocation per frame.
+    #[pyo3(signature = (surface, out=None))]
+    fn positions(
+        &self,
+        py: Python<'_>,
+        surface: &Bound<'_, PyAny>,
+        out: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        let surf = AnySurface::from_py(surface)?;
+        let knit = self.inner.clone();
+        let nv = knit.vertex_count();
+        match out {
+            None => {
+                let mut buf = crate::output_buffer::zeroed::<f32>(3 * nv);
+                let buf = guarded(py, move || {
+                    knit.positions_into(surf.as_dyn(), &mut buf).map(|_| buf)
+                })?;
+                rows(py, buf, 3)
+            }
+            Some(obj) => {
+                let arr = obj.cast::<PyArrayDyn<f32>>().map_err(|_| {
+                    ParameterError::new_err("out must be a float32 numpy array of shape (V, 3)")
+                })?;
+                if arr.shape() != [nv, 3] {
+                    return Err(ParameterError::new_err(format!(
+                        "out must have shape ({nv}, 3), not {:?}",
+                        arr.shape()
+                    )));
+                }
+                let mut rw = arr.try_readwrite().map_err(|_| {
+                    ParameterError::new_err("out must be writable and not borrowed elsewhere")
+                })?;
+                let slice = rw
+                    .as_slice_mut()
+                    .map_err(|_| ParameterError::new_err("out must be C-contiguous"))?;
+                if !arr.is_c_contiguous() {
+                    return Err(ParameterError::new_err("out must be C-contiguous"));
+                }
+                guarded(py, move || knit.positions_into(surf.as_dyn(), slice))?;
+                Ok(obj.clone().unbind())
+            }
+        }
+    }
+
+    /// `(V, 3)` float32 vertex normals for `surface` in a new pose, bit-identical to
+    /// `build(surface).normals`, of a knit that culls its hidden yarn (a `ParameterError` for
+    /// another: its mesh's own normals are right). With `out`, written there.
+    #[pyo3(signature = (surface, out=None))]
+    fn normals(
+        &self,
+        py: Python<'_>,
+        surface: &Bound<'_, PyAny>,
+        out: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Py<PyAny>> {
+        let surf = AnySurface::from_py(surface)?;
+        let knit = self.inner.clone();
+        let nv = knit.vertex_count();
+        let mut normals = crate::output_buffer::zeroed::<f32>(3 * nv);
+        let normals = guarded(py, move || {
+            let mut positions = crate::output_buffer::zeroed::<f32>(3 * nv);
+            knit.positions_and_normals_into(surf.as_dyn(), &mut positions, Some(&mut normals))
+                .map(|_| normals)
+        })?;
+        match out {
+            None => rows(py, normals, 3),
+            Some(obj) => {
+                let np = py.import("numpy")?;
+                let src = rows(py, normals, 3)?;
+                np.call_method1("copyto", (obj, src)).map_err(|e| {
+                    ParameterError::new_err(format!("out must be a float32 array ({nv}, 3): {e}"))
+                })?;
+                Ok(obj.clone().unbind())
+            }
+        }
+    }
+
+    /// Vertices of every build.
+    #[getter]
+    fn vertex_count(&self) -> usize {
+        self.inner.vertex_count()
+    }
+
+    /// The yarn radius, scene units.
+    #[getter]
+    fn yarn_radius(&self) -> f32 {
+        self.inner.yarn_radius()
+    }
+
+    /// `(courses, wales)`.
+    #[getter]
+    fn counts(&self) -> (usize, usize) {
+        let s = self.inner.stats();
+        (s.courses, s.wales)
+    }
+
+    /// `(width, height)` of a stitch that the loop shapes are tuned for, scene units.
+    #[getter]
+    fn stitch_size(&self) -> (f32, f32) {
+        let s = self.inner.stats();
+        (s.stitch_width, s.stitch_height)
+    }
+
+    /// Equal keys mean identical triangles, edges and corner edges (see `KnitResult.stats`).
+    #[getter]
+    fn topology_key(&self) -> u64 {
+        self.inner.stats().topology_key
+    }
+
+    /// With `cull_hidden`: the triangles seen, as `bytes`, one bit per triangle of the knit
+    /// before culling (triangle `i` at bit `i % 8` of byte `i / 8`). Pass them back as
+    /// `seen_triangles` (with `stitch_levels`) to rebuild the same mesh without the camera.
+    /// None without.
+    #[getter]
+    fn seen_triangles<'py>(&self, py: Python<'py>) -> Option<Bound<'py, pyo3::types::PyBytes>> {
+        self.inner
+            .seen_triangles()
+            .map(|b| pyo3::types::PyBytes::new(py, b))
+    }
+
+    /// With a camera: `(courses, wales)` uint8, each stitch's level (0 full, 1 mid, 2 far,
+    /// 3 texture, 4 culled or no surface under it). None without a camera.
+    #[getter]
+    fn stitch_levels(&self, py: Python<'_>) -> PyResult<Option<Py<PyAny>>> {
+        let Some(levels) = self.inner.stitch_levels() else {
+            return Ok(None);
+        };
+        let wales = self.inner.stats().wales;
+        let v: Vec<u8> = levels.iter().map(|l| *l as u8).collect();
+        rows(py, v, wales).map(Some)
+    }
+}
