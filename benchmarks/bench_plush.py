@@ -66,9 +66,9 @@ def main() -> None:
           f"{scene.render.threads} threads, {args.repeats} repeats per figure")
 
     sampled = sampling.sample_object(
-        source, bpy.context, min_samples=plush._min_samples((WALES, COURSES))
+        source, bpy.context, min_samples=plush.core_inputs.min_samples((WALES, COURSES))
     )
-    kwargs = plush.core_settings(plush._complete(settings), scene)
+    kwargs = plush.core_settings(plush.core_inputs.complete(settings), scene)
     kwargs.update(plush.view_of(camera, sampled.matrix.inverted()))
 
     def core() -> object:

@@ -13,14 +13,12 @@ from typing import Any
 import bpy
 import knitwear
 
-from . import sampling
+from . import sampling, shared_inputs
 from .properties import CUSTOM_PATTERN, FILE_PATTERN, KNIT_SETTINGS, MAX_COLORS
 
 #: Called with the fraction done (0..1) between the steps of a knit.
 Progress = Callable[[float], None]
 
-#: The core reads a gauge as stitches per this many scene units (10 cm in metres).
-_GAUGE_LENGTH = 0.1
 
 complete = KNIT_SETTINGS.complete
 
@@ -61,26 +59,14 @@ def _pattern_from_file(settings: Mapping[str, Any]) -> "knitwear.Pattern":
     return knitwear.Pattern.from_file(bpy.path.abspath(path))
 
 
-
-def _palette(settings: Mapping[str, Any]) -> list[tuple[float, float, float]]:
-    return [tuple(settings[f"color_{i + 1}"]) for i in range(MAX_COLORS)]
-
-
 def _colors(settings: Mapping[str, Any]) -> dict[str, Any]:
     """The core's `colors` / `color_image` arguments."""
     mode = settings["color_mode"]
-    palette = _palette(settings)
+    palette = shared_inputs.palette(settings, MAX_COLORS)
     if mode == "SINGLE":
         return {"colors": knitwear.ColorPattern(palette[:1], "0")}
     if mode == "STRIPES":
-        count = int(settings["color_count"])
-        if not 1 <= count <= MAX_COLORS:
-            raise knitwear.ParameterError(f"color_count must be 1 to {MAX_COLORS}, not {count}")
-        return {
-            "colors": knitwear.ColorPattern.stripes(
-                palette[:count], rows_each=int(settings["stripe_height"])
-            )
-        }
+        return {"colors": shared_inputs.stripes(settings, MAX_COLORS)}
     if mode == "CHART":
         chart = str(settings["color_chart"]).strip()
         if chart in knitwear.ColorPattern.presets():
@@ -102,30 +88,6 @@ def _colors(settings: Mapping[str, Any]) -> dict[str, Any]:
     )
 
 
-def _gauge(per_10cm: float, scene: bpy.types.Scene) -> float:
-    """A gauge per 10 cm as the core reads it: per 0.1 scene units, as if a unit were a metre.
-
-    One scene unit is ``scale_length`` metres, so 0.1 units hold ``scale_length`` times the
-    stitches that 10 cm hold.
-    """
-    return per_10cm * scene.unit_settings.scale_length
-
-
-def _size(settings: Mapping[str, Any], scene: bpy.types.Scene) -> dict[str, Any]:
-    """The core's size arguments: explicit counts, or a gauge per 0.1 scene units."""
-    mode = settings["size_mode"]
-    if mode == "COUNTS":
-        return {"courses": int(settings["courses"]), "wales": int(settings["wales"])}
-    if mode == "GAUGE":
-        stitches, rows = float(settings["gauge_stitches"]), float(settings["gauge_rows"])
-        if not (stitches > 0 and rows > 0):
-            raise knitwear.ParameterError(
-                f"gauge must be positive, not {stitches:g} stitches x {rows:g} rows per 10 cm"
-            )
-        return {"gauge": (_gauge(stitches, scene), _gauge(rows, scene))}
-    raise knitwear.ParameterError(f"unknown size_mode {mode!r}; expected GAUGE or COUNTS")
-
-
 def _min_samples(
     source: bpy.types.Object,
     context: bpy.types.Context,
@@ -143,8 +105,8 @@ def _min_samples(
         if probe.grid_shape is None:
             return None  # modifiers made it a mesh: used as it is
         extent_u, extent_v = probe.surface.extent
-        wales = extent_u * size["gauge"][0] / _GAUGE_LENGTH
-        courses = extent_v * size["gauge"][1] / _GAUGE_LENGTH
+        wales = extent_u * size["gauge"][0] / shared_inputs.GAUGE_LENGTH
+        courses = extent_v * size["gauge"][1] / shared_inputs.GAUGE_LENGTH
     else:
         wales, courses = size["wales"], size["courses"]
     per = sampling.SAMPLES_PER_STITCH
@@ -157,7 +119,7 @@ def core_settings(settings: Mapping[str, Any], scene: bpy.types.Scene) -> dict[s
     """`knitwear.knit` / `knitwear.Knit` keywords for ``settings`` (all but the pinned ones)."""
     radius = float(settings["yarn_radius"])
     return {
-        **_size(settings, scene),
+        **shared_inputs.size(settings, scene),
         **_colors(settings),
         "yarn_radius": radius if radius > 0 else None,
         "fluffiness": float(settings["fluffiness"]),

@@ -5,8 +5,9 @@ Shared by the knit settings (`properties.KnitSettingsMixin`) and the plush setti
 (`plush.PlushSettingsMixin`).
 """
 
+import warnings
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -19,6 +20,9 @@ class SettingsSchema:
     what: str
     #: A class whose annotations are bpy property definitions.
     mixin: type
+    #: Keywords renamed since a release, old name to new: still accepted from scripts, with a
+    #: DeprecationWarning.
+    renamed: Mapping[str, str] = field(default_factory=dict)
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -51,6 +55,15 @@ class SettingsSchema:
         way makes a result built from keyword arguments and one rebuilt later from the stored
         settings bit-identical, as they are for the operator.
         """
+        settings = dict(settings)
+        for old, new in self.renamed.items():
+            if old in settings:
+                warnings.warn(
+                    f"the {self.what} setting {old} is now called {new}",
+                    DeprecationWarning,
+                    stacklevel=3,
+                )
+                settings.setdefault(new, settings.pop(old))
         unknown = sorted(set(settings) - set(self.names))
         if unknown:
             raise TypeError(

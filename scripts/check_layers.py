@@ -125,21 +125,39 @@ def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
 
 
 def addon_imports(addon: Path) -> dict[str, set[str]]:
+    """The add-on's modules (dotted, relative to the add-on: ``plush.api``) and the modules
+    of the add-on each imports (``from . import x``, ``from .x import y``, ``from .. import
+    x`` in a subpackage). A package's ``__init__`` registers its modules and is left out."""
+    modules = {
+        ".".join(p.relative_to(addon).with_suffix("").parts): p
+        for p in addon.rglob("*.py")
+        if p.name != "__init__.py"
+    }
+    packages = {".".join(p.relative_to(addon).parts) for p in addon.rglob("*") if p.is_dir()}
     graph: dict[str, set[str]] = defaultdict(set)
-    names = {p.stem for p in addon.glob("*.py")} | {p.name for p in addon.iterdir() if p.is_dir()}
-    for path in sorted(addon.rglob("*.py")):
-        me = path.relative_to(addon).with_suffix("").parts[0]
-        if me == "__init__":
-            continue
-        text = path.read_text()
-        for group in re.findall(r"^\s*from \. import ([\w, ()\n]+?)(?:#.*)?$", text, re.M):
-            for name in re.findall(r"\w+", group):
-                if name in names and name != me:
-                    graph[me].add(name)
-        for name in re.findall(r"^\s*from \.(\w+)", text, re.M):
-            if name in names and name != me:
-                graph[me].add(name)
+
+    def resolve(base: list[str], name: str) -> str | None:
+        dotted = ".".join([*base, name])
+        return dotted if dotted in modules or dotted in packages else None
+
+    for me, path in sorted(modules.items()):
+        package = me.split(".")[:-1]
         graph.setdefault(me, set())
+        for dots, rest, names in re.findall(
+            r"^\s*from (\.+)([\w.]*) import \(?([\w, \n]+?)\)?(?:#.*)?$",
+            path.read_text(),
+            re.M,
+        ):
+            base = package[: len(package) - (len(dots) - 1)] if len(dots) > 1 else package
+            if rest:
+                target = resolve(base, rest)
+                if target:
+                    graph[me].add(target)
+                continue
+            for name in re.findall(r"\w+", names):
+                target = resolve(base, name)
+                if target and target != me:
+                    graph[me].add(target)
     return graph
 
 

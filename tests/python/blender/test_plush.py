@@ -151,6 +151,25 @@ ERRORS: dict[str, tuple[Callable[[], bpy.types.Object], dict[str, Any], str, str
 }
 
 
+def test_the_gauge_is_named_as_the_knits_and_the_old_names_still_work(
+    plush: ModuleType, core: ModuleType
+) -> None:
+    """Plush and knit both say gauge_stitches / gauge_rows, and both refuse a gauge that is
+    not positive before the core runs; a script written with the plush's old gauge_wales /
+    gauge_courses gets the same plush and a DeprecationWarning."""
+    source = nurbs_patch()
+    before = _blend_state(source)
+    with pytest.raises(core.ParameterError, match="gauge must be positive"):
+        plush.knit_plush(source, size_mode="GAUGE", gauge_stitches=0.0)
+    assert _blend_state(source) == before
+    gauge = {"size_mode": "GAUGE", "slices": 4, "seed": 1}
+    new = plush.knit_plush(source, **gauge, gauge_stitches=30.0, gauge_rows=40.0)
+    with pytest.warns(DeprecationWarning, match="gauge_wales is now called gauge_stitches"):
+        old = plush.knit_plush(source, **gauge, gauge_wales=30.0, gauge_courses=40.0)
+    assert len(new.data.vertices) > 0
+    np.testing.assert_array_equal(positions(old.data), positions(new.data))
+
+
 def _blend_state(source: bpy.types.Object) -> tuple[dict[str, int], dict[str, Any], str]:
     return data_counts(), snapshot(source), bpy.context.active_object.name
 
