@@ -11,6 +11,8 @@ cargo fmt --check
 cargo clippy --quiet --all-targets -- -D warnings
 .venv/bin/ruff check python blender_addon tests examples benchmarks scripts
 .venv/bin/python scripts/check_layers.py
+# The .pyi stub against the built module: names, signatures, defaults.
+PYTHONPATH="$root/build/site" .venv/bin/python -m mypy.stubtest knitwear._core
 
 echo "== cargo test"
 cargo test --quiet

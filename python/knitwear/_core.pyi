@@ -1,12 +1,38 @@
 """Type stubs of the compiled core (``knitwear._core``). Lengths are in scene units."""
 
 import os
-from typing import Any, Sequence
+from typing import Any, Self, Sequence, final
 
 import numpy as np
 import numpy.typing as npt
 
 __version__: str
+__all__ = [
+    "BudgetError",
+    "Camera",
+    "ColorPattern",
+    "GridSurface",
+    "InternalError",
+    "Knit",
+    "KnitError",
+    "KnitResult",
+    "MeshSurface",
+    "ParameterError",
+    "Pattern",
+    "PatternError",
+    "PlushField",
+    "PlushResult",
+    "PlushView",
+    "SurfaceError",
+    "__version__",
+    "_force_internal_error",
+    "fractal_noise",
+    "knit_texture",
+    "measure_clearance",
+    "measure_cover",
+    "plush",
+    "settings",
+]
 
 class KnitError(Exception):
     """Base class of every error a user can cause (bad surface, pattern, setting, budget)."""
@@ -26,6 +52,7 @@ class BudgetError(KnitError):
 class InternalError(KnitError):
     """A bug in knitwear (a caught panic). Please report it."""
 
+@final
 class GridSurface:
     """Positions and normals sampled on a regular (u,v) grid, e.g. a NURBS surface.
 
@@ -34,27 +61,28 @@ class GridSurface:
     (equal to the first) is detected and dropped. Likewise for ``cyclic_v`` and rows.
     """
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         positions: npt.NDArray[np.float32],
         normals: npt.NDArray[np.float32],
         cyclic_u: bool = False,
         cyclic_v: bool = False,
-    ) -> None: ...
+    ) -> Self: ...
     @property
     def extent(self) -> tuple[float, float]:
         """Mean length along u (a course) and along v (a wale), scene units."""
 
+@final
 class MeshSurface:
     """A triangle mesh with per-corner UVs; (u,v) is the UV map."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         positions: npt.NDArray[np.float32],
         normals: npt.NDArray[np.float32],
         triangles: npt.NDArray[Any],
         uvs: npt.NDArray[np.float32],
-    ) -> None: ...
+    ) -> Self: ...
     @property
     def extent(self) -> tuple[float, float]: ...
     @property
@@ -62,6 +90,7 @@ class MeshSurface:
         """The UV map's bounding box ((u_min, v_min), (u_max, v_max)): what a knit and a
         knit texture cover."""
 
+@final
 class Pattern:
     """A stitch pattern: a chart of stitches (knit, purl, cables, decreases, yarn-overs,
     slips, bobbles), repeated over the surface."""
@@ -98,11 +127,13 @@ class Pattern:
     def stitch_counts(self) -> list[tuple[int, int]]:
         """Per row, bottom first: (loops of the row below worked, stitches made)."""
 
+@final
 class ColorPattern:
     """A palette (linear RGB, 0..1) and a chart of palette indices (digits 0-9, then a-z),
     one line per row, top line = top row, repeated over the surface."""
 
-    def __init__(self, palette: Sequence[Sequence[float]], chart: str = "0") -> None: ...
+    def __new__(
+        cls, palette: Sequence[Sequence[float]], chart: str = "0") -> Self: ...
     @staticmethod
     def stripes(palette: Sequence[Sequence[float]], rows_each: int = 2) -> ColorPattern: ...
     @staticmethod
@@ -111,6 +142,7 @@ class ColorPattern:
     @staticmethod
     def presets() -> list[str]: ...
 
+@final
 class KnitResult:
     vertices: npt.NDArray[np.float32]  # (V, 3)
     triangles: npt.NDArray[np.int32]  # (T, 3)
@@ -125,13 +157,14 @@ class KnitResult:
     normals: npt.NDArray[np.float32] | None  # (V, 3) with cull_hidden: the whole knit's
     stats: dict[str, Any]
 
+@final
 class Knit:
     """A knit bound to its surface's (u,v) layout: counts, yarn radius, stitch size and
     buffer layout fixed once, so `build` and `positions` give one topology for the surface
     in any pose. Same keyword settings as `knit`."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         surface: GridSurface | MeshSurface,
         pattern: Pattern,
         *,
@@ -162,7 +195,7 @@ class Knit:
         cull_hidden: bool = False,
         hidden_supersampling: int = 4,
         seen_triangles: bytes | None = None,
-    ) -> None: ...
+    ) -> Self: ...
     def build(self, surface: GridSurface | MeshSurface) -> KnitResult:
         """The whole result for `surface` (the one knitted, or it deformed)."""
     def crossing_order(self, surface: GridSurface | MeshSurface) -> tuple[int, int, int]:
@@ -203,6 +236,7 @@ class Knit:
         """With a camera, (courses, wales): 0 full, 1 mid, 2 far, 3 texture, 4 culled (or no
         surface under the stitch). None without a camera."""
 
+@final
 class Camera:
     """Camera views of a surface for camera-driven detail. ``matrices``: (4, 4) or (F, 4, 4)
     clip-from-object (``projection @ view @ world_from_object``, OpenGL clip conventions,
@@ -211,9 +245,9 @@ class Camera:
     ``resolution``: (width, height) pixels. Several views (an animated camera's frames) model
     each stitch for the view that sees it largest."""
 
-    def __init__(
-        self, matrices: npt.ArrayLike, eyes: npt.ArrayLike, resolution: tuple[int, int]
-    ) -> None: ...
+    def __new__(
+        cls, matrices: npt.ArrayLike, eyes: npt.ArrayLike, resolution: tuple[int, int]
+    ) -> Self: ...
     @property
     def views(self) -> int: ...
     @property
@@ -268,6 +302,7 @@ def measure_cover(
 # `view_dir` in the surface's object space. The fabric frame: x along the course (u), y along
 # the wale (v), z the surface normal.
 
+@final
 class PlushView:
     """The view-dependent buffers of a plush for one view (topology, UVs and colours are
     the `PlushResult`'s and never change with the view)."""
@@ -277,6 +312,7 @@ class PlushView:
     horizontal: npt.NDArray[np.uint8]  # (P,) 1 where the pile has horizontal slices
     stats: dict[str, Any]  # horizontal, vertical, seconds
 
+@final
 class PlushField:
     """Pile roots, frames, directions and colours sampled once; re-viewed cheaply."""
 
@@ -326,6 +362,7 @@ class PlushField:
     def noise_rgb(self) -> npt.NDArray[np.float32]:
         """(H, W, 3) the noise as the paper's image, (v + 1) / 2 in [0, 1]."""
 
+@final
 class PlushResult:
     vertices: npt.NDArray[np.float32]  # (V, 3), V = 4 * slices * piles
     triangles: npt.NDArray[np.int32]  # (T, 3), two per slice quad
@@ -377,3 +414,8 @@ def fractal_noise(
 ) -> npt.NDArray[np.float32]:
     """(height, width, 3) float32 fractal noise unit vectors (or with rgb=True the image
     (v + 1) / 2); size is an int or (width, height); scales=(1,) gives the base noise."""
+
+def _force_internal_error() -> None:
+    """Raises InternalError from a deliberate panic in the core (a test hook: no Rust panic
+    crosses into Python)."""
+    ...
