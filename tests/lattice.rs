@@ -367,39 +367,45 @@ fn cyclic_sides_are_periodic() {
     }
 }
 
-#[test]
-fn non_cyclic_sides_keep_their_boundary_coordinate() {
-    for (courses, wales) in [(1, 1), (3, 2), (37, 53)] {
-        for (cu, cv) in CYCLIC {
-            for seed in 0..5 {
-                let l =
-                    Lattice::perturbed(domain(), courses, wales, cu, cv, KAPPA_MAX, seed).unwrap();
-                let r = Lattice::regular(domain(), courses, wales, cu, cv);
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(96))]
+
+    /// For any size, cyclic sides, irregularity and seed: a side that is not cyclic keeps its
+    /// boundary coordinate exactly (the perturbation slides nodes along it, never off it),
+    /// and rows 0..=courses stay within the domain (row courses + 1 is only the top course's
+    /// northern neighbour, outside the domain even when regular).
+    #[test]
+    fn non_cyclic_sides_keep_their_boundary_coordinate(
+        courses in 1usize..60,
+        wales in 1usize..60,
+        cu: bool,
+        cv: bool,
+        kappa in 0.0f32..=KAPPA_MAX,
+        seed: u64,
+    ) {
+        let l = Lattice::perturbed(domain(), courses, wales, cu, cv, kappa, seed).unwrap();
+        let r = Lattice::regular(domain(), courses, wales, cu, cv);
+        if !cu {
+            for row in 0..courses + 2 {
+                proptest::prop_assert_eq!(l.node(row, 0).x, domain().min.x);
+                proptest::prop_assert_eq!(l.node(row, 0).x, r.node(row, 0).x);
+                proptest::prop_assert_eq!(l.node(row, wales).x, r.node(row, wales).x);
+            }
+        }
+        if !cv {
+            for c in 0..=wales {
+                proptest::prop_assert_eq!(l.node(0, c).y, r.node(0, c).y);
+                proptest::prop_assert_eq!(l.node(courses + 1, c).y, r.node(courses + 1, c).y);
+            }
+        }
+        for row in 0..=courses {
+            for c in 0..=wales {
+                let p = l.node(row, c);
                 if !cu {
-                    for row in 0..courses + 2 {
-                        assert_eq!(l.node(row, 0).x, domain().min.x);
-                        assert_eq!(l.node(row, 0).x, r.node(row, 0).x);
-                        assert_eq!(l.node(row, wales).x, r.node(row, wales).x);
-                    }
+                    proptest::prop_assert!(p.x >= domain().min.x && p.x <= domain().max.x + 1e-6);
                 }
                 if !cv {
-                    for c in 0..=wales {
-                        assert_eq!(l.node(0, c).y, r.node(0, c).y);
-                        assert_eq!(l.node(courses + 1, c).y, r.node(courses + 1, c).y);
-                    }
-                }
-                // Rows 0..=courses (row courses + 1 is only the top course's northern
-                // neighbour, outside the domain even when regular) stay within the domain.
-                for row in 0..=courses {
-                    for c in 0..=wales {
-                        let p = l.node(row, c);
-                        if !cu {
-                            assert!(p.x >= domain().min.x && p.x <= domain().max.x + 1e-6);
-                        }
-                        if !cv {
-                            assert!(p.y >= domain().min.y && p.y <= domain().max.y + 1e-6);
-                        }
-                    }
+                    proptest::prop_assert!(p.y >= domain().min.y && p.y <= domain().max.y + 1e-6);
                 }
             }
         }
