@@ -460,6 +460,9 @@ fn errors_name_the_row_the_instruction_the_token_and_a_suggestion() {
             "Row 1: k2, c4q.",
             &["instruction 2", "c4q", "did you mean \"C4B\""],
         ),
+        // A cable or twist name ending in a character of more than one byte: once a panic.
+        ("Row 1: k2, tü.", &["instruction 2", "tü"]),
+        ("Row 1: c4é.", &["instruction 1", "c4é"]),
         ("Row 1: *k2, p2.", &["never says"]),
         ("Row 1: k2, rep from *.", &["no '*'"]),
         (

@@ -35,6 +35,9 @@
 //! its left edge (the chart repeats): `XkkX` with `X = 1/1 RT` crosses the last column over
 //! the first. Other stitches are one cell each (a decrease is one cell, a yo one cell).
 //!
+//! A legend's stitch is read, and an unknown one answered with the closest known name, by
+//! the same stitch vocabulary as Knitspeak rows ([`super::vocabulary`]).
+//!
 //! Every row must work as many loops of the row below as it makes stitches (a yo balanced by
 //! a decrease in the same row), since knitwear knits on a lattice of a fixed width.
 //!
@@ -50,9 +53,10 @@
 use std::collections::HashMap;
 
 use super::instruction::{Instruction, MAX_CROSS_SIDE};
-use super::knitspeak::{normalised, parse_stitch, suggest, wrap};
+use super::knitspeak::{normalised, wrap};
 use super::rows::{cells_from_rows, WrittenRow};
 use super::stitch::{Face, Form};
+use super::vocabulary::{parse_stitch, suggest};
 use super::{Stitch, StitchPattern};
 use crate::error::{KnitError, Result};
 

@@ -13,6 +13,7 @@ mod knitspeak;
 mod presets;
 pub mod rows;
 mod stitch;
+mod vocabulary;
 
 pub use chart::parse_chart;
 pub use color::ColorPattern;

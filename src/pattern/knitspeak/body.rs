@@ -1,0 +1,348 @@
+//! A row's body, the text after its header's `:` (`P2, *k2tog, yo, k1; rep from * to last 2
+//! sts, p2 (18 sts)`), read into the stitches before its repeat, the repeat and how it ends,
+//! the stitches after it, and its stitch count ([`parse_body`]). Each stitch phrase is read by
+//! [`parse_stitch`] from the one vocabulary.
+
+use super::lexer::{tokens, Tok};
+use super::MAX_KNITSPEAK_WIDTH;
+use crate::error::{KnitError, Result};
+use crate::pattern::vocabulary::{
+    after_repeat_from, is_knit_or_purl_name, parse_stitch, suggest, Stitched,
+};
+
+/// How an open repeat ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Until {
+    /// Across the row (`rep from * to end`, or the stitches after it follow).
+    End,
+    /// `to last N sts`.
+    Last(usize),
+    /// `rep from * 2 more times`: this many times in all.
+    Times(usize),
+}
+
+/// One row's body: stitches before the repeat, the repeat, stitches after it (working order).
+#[derive(Debug, Clone)]
+pub(super) struct Body {
+    pub before: Vec<Stitched>,
+    pub repeat: Option<(Vec<Stitched>, Until)>,
+    pub after: Vec<Stitched>,
+    /// `(18 sts)`
+    pub count: Option<usize>,
+}
+
+/// One element of a body, in the order written.
+#[derive(Debug, Clone)]
+enum El {
+    Stitch(Stitched),
+    /// `k to end`, `k to last 3 sts`, `Knit.`: a one-stitch open repeat.
+    Fill(Stitched, Until, usize),
+    RepStart(usize),
+    RepEnd(Until, usize),
+    Count(usize),
+}
+
+/// Reads a body's tokens into its elements, brackets expanded.
+struct BodyParser<'a> {
+    toks: Vec<Tok>,
+    /// The next token.
+    at: usize,
+    what: &'a str,
+    /// Instructions read so far (for messages, counted from 1).
+    instruction: usize,
+    /// A `Repeat rows 1-4` or `Multiple of 6 sts` phrase was met: what follows is no row.
+    stop: bool,
+    /// The body is one phrase (`Knit.`): a bare `k` or `knit` fills the row.
+    single: bool,
+}
+
+/// `3 times`, `twice`, `once`, `3x` -> the count.
+fn times(s: &str) -> Option<usize> {
+    let s = s.trim().to_lowercase();
+    match s.as_str() {
+        "once" => return Some(1),
+        "twice" => return Some(2),
+        "thrice" | "three times" => return Some(3),
+        "four times" => return Some(4),
+        _ => {}
+    }
+    let n = s
+        .strip_suffix("times")
+        .or_else(|| s.strip_suffix("x"))?
+        .trim();
+    n.parse().ok().filter(|&n| n >= 1)
+}
+
+/// `k2tog 3 times` -> (`k2tog`, 3); a phrase without a count -> (phrase, 1).
+fn split_times(s: &str) -> (String, usize) {
+    for (word, n) in [("once", 1), ("twice", 2), ("thrice", 3)] {
+        if let Some(head) = s.strip_suffix(word) {
+            if head.ends_with(' ') {
+                return (head.trim().to_string(), n);
+            }
+        }
+    }
+    if let Some((head, n)) = s
+        .strip_suffix("times")
+        .and_then(|h| h.trim().rsplit_once(' '))
+        .and_then(|(h, n)| Some((h, n.parse::<usize>().ok().filter(|&n| n >= 1)?)))
+    {
+        return (head.trim().to_string(), n);
+    }
+    (s.to_string(), 1)
+}
+
+/// `to end`, `across`, `to last 3 sts`, `to last st` -> how a repeat ends.
+fn until(s: &str) -> Option<Until> {
+    let s = s.trim().to_lowercase();
+    let s = s.trim_start_matches("and").trim();
+    match s {
+        "" | "to end" | "to the end" | "across" | "to end of row" | "to end of rnd"
+        | "to end of round" | "across row" | "all sts" | "all" => return Some(Until::End),
+        "to last st" | "to the last st" | "to last stitch" => return Some(Until::Last(1)),
+        _ => {}
+    }
+    if let Some(rest) = s
+        .strip_prefix("to last")
+        .or_else(|| s.strip_prefix("to the last"))
+    {
+        let n = rest
+            .trim()
+            .trim_end_matches("stitches")
+            .trim_end_matches("sts")
+            .trim_end_matches("st");
+        return n.trim().parse().ok().map(Until::Last);
+    }
+    let more = s
+        .strip_suffix("more times")
+        .or_else(|| s.strip_suffix("times more"))
+        .map(|n| n.trim().parse::<usize>().ok());
+    match (s, more) {
+        ("once more", _) => Some(Until::Times(2)),
+        ("twice more", _) => Some(Until::Times(3)),
+        (_, Some(Some(n))) => Some(Until::Times(n + 1)),
+        _ => None,
+    }
+}
+
+impl BodyParser<'_> {
+    fn peek(&self) -> Option<&Tok> {
+        self.toks.get(self.at)
+    }
+
+    fn err(&self, token: &str, why: &str) -> KnitError {
+        KnitError::Pattern(format!(
+            "{}, instruction {} (\"{token}\"): {why}",
+            self.what, self.instruction
+        ))
+    }
+
+    /// Elements up to a closing bracket (`close`) or the end.
+    fn list(&mut self, close: Option<char>, depth: usize) -> Result<Vec<El>> {
+        let mut els = Vec::new();
+        while let Some(tok) = self.peek().cloned() {
+            if self.stop {
+                break;
+            }
+            self.at += 1;
+            match tok {
+                Tok::Sep => {}
+                Tok::Star => {
+                    if depth > 0 {
+                        return Err(self.err("*", "a repeat cannot start inside brackets"));
+                    }
+                    els.push(El::RepStart(self.instruction + 1));
+                }
+                Tok::Close(c) => {
+                    if close.is_some() {
+                        return Ok(els);
+                    }
+                    return Err(self.err(&c.to_string(), "a closing bracket with no opening one"));
+                }
+                Tok::Open(c) => {
+                    let inner = self.list(Some(c), depth + 1)?;
+                    // `(18 sts)`: a stitch count.
+                    if let [El::Count(n)] = inner.as_slice() {
+                        els.push(El::Count(*n));
+                        continue;
+                    }
+                    let mut n = 1;
+                    if let Some(Tok::Text(t)) = self.peek().cloned() {
+                        self.at += 1;
+                        n = times(&t)
+                            .ok_or_else(|| self.err(&t, "expected \"N times\" after brackets"))?;
+                    }
+                    if inner.len().saturating_mul(n) + els.len() > 16 * MAX_KNITSPEAK_WIDTH {
+                        return Err(self.err(&format!("{n} times"), "far too many stitches"));
+                    }
+                    for _ in 0..n {
+                        els.extend(inner.iter().cloned());
+                    }
+                }
+                Tok::Text(t) => self.text(&t, &mut els, close.is_some())?,
+            }
+        }
+        if let Some(c) = close {
+            return Err(self.err(&c.to_string(), "this bracket is never closed"));
+        }
+        Ok(els)
+    }
+
+    fn text(&mut self, t: &str, els: &mut Vec<El>, in_brackets: bool) -> Result<()> {
+        let lower = t.to_lowercase();
+        let lower = lower.trim();
+        if in_brackets {
+            let count = lower
+                .trim_end_matches("stitches")
+                .trim_end_matches("sts")
+                .trim_end_matches("st")
+                .trim();
+            if count.len() < lower.len() {
+                if let Ok(n) = count.parse() {
+                    els.push(El::Count(n));
+                    return Ok(());
+                }
+            }
+        }
+        if [
+            "repeat rows",
+            "rep rows",
+            "repeat rnds",
+            "rep rnds",
+            "work rows",
+            "multiple of",
+        ]
+        .iter()
+        .any(|w| lower.starts_with(w))
+        {
+            self.stop = true;
+            return Ok(());
+        }
+        self.instruction += 1;
+        if let Some(rest) = after_repeat_from(lower) {
+            let u = until(rest).ok_or_else(|| {
+                self.err(
+                    t,
+                    "expected \"to end\", \"to last N sts\" or \"N more times\"",
+                )
+            })?;
+            els.push(El::RepEnd(u, self.instruction));
+            return Ok(());
+        }
+        // A one-stitch open repeat: `Knit`, `k to end`, `p to last 3 sts`, `knit across`.
+        let bare = self.single && is_knit_or_purl_name(lower);
+        for (i, _) in lower.match_indices(' ') {
+            let (head, tail) = lower.split_at(i);
+            if let (Some(u), Some((s, 1))) = (until(tail), parse_stitch(head)) {
+                if !tail.trim().is_empty() && s.ins.stitches_in() == 1 {
+                    els.push(El::Fill(s, u, self.instruction));
+                    return Ok(());
+                }
+            }
+        }
+        // `k2tog 3 times`
+        let (phrase, n) = split_times(lower);
+        let Some((s, count)) = parse_stitch(&phrase) else {
+            return Err(unknown(self.what, self.instruction, t));
+        };
+        if bare && !in_brackets {
+            els.push(El::Fill(s, Until::End, self.instruction));
+            return Ok(());
+        }
+        let total = count.saturating_mul(n);
+        if total > MAX_KNITSPEAK_WIDTH {
+            return Err(self.err(t, &format!("more than {MAX_KNITSPEAK_WIDTH} stitches")));
+        }
+        els.extend(std::iter::repeat_n(El::Stitch(s), total));
+        Ok(())
+    }
+}
+
+/// A row's body (after its header's `:`), in working order.
+pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
+    let toks = tokens(body);
+    let single = toks.iter().filter(|t| !matches!(t, Tok::Sep)).count() == 1;
+    let mut p = BodyParser {
+        single,
+        toks,
+        at: 0,
+        what,
+        instruction: 0,
+        stop: false,
+    };
+    let els = p.list(None, 0)?;
+    let mut out = Body {
+        before: Vec::new(),
+        repeat: None,
+        after: Vec::new(),
+        count: None,
+    };
+    // 0: before the repeat, 1: inside it, 2: after it.
+    let mut stage = 0;
+    let mut unit = Vec::new();
+    let mut star_at = 0;
+    for el in els {
+        match el {
+            El::Count(n) => out.count = Some(n),
+            El::Stitch(s) => match stage {
+                0 => out.before.push(s),
+                1 => unit.push(s),
+                _ => out.after.push(s),
+            },
+            El::RepStart(at) => {
+                if stage != 0 {
+                    return Err(KnitError::Pattern(format!(
+                        "{what}, instruction {at}: a second '*' repeat in one row; knitwear \
+                         reads one repeat per row"
+                    )));
+                }
+                stage = 1;
+                star_at = at;
+            }
+            El::RepEnd(u, at) => {
+                if stage != 1 {
+                    return Err(KnitError::Pattern(format!(
+                        "{what}, instruction {at} (\"rep from *\"): a repeat with no '*' \
+                         before it"
+                    )));
+                }
+                out.repeat = Some((std::mem::take(&mut unit), u));
+                stage = 2;
+            }
+            El::Fill(s, u, at) => {
+                if stage != 0 {
+                    return Err(KnitError::Pattern(format!(
+                        "{what}, instruction {at}: \"{} to end\" inside or after another \
+                         repeat",
+                        s.ins.name()
+                    )));
+                }
+                out.repeat = Some((vec![s], u));
+                stage = 2;
+            }
+        }
+    }
+    if stage == 1 {
+        return Err(KnitError::Pattern(format!(
+            "{what}: the repeat that starts with '*' (instruction {star_at}) never says \
+             \"rep from *\""
+        )));
+    }
+    // `rep from *` followed by stitches: the repeat stops where they start.
+    if out.before.is_empty() && out.repeat.is_none() && out.after.is_empty() {
+        return Err(KnitError::Pattern(format!(
+            "{what}: no stitches in \"{}\"",
+            body.trim()
+        )));
+    }
+    Ok(out)
+}
+
+/// An unknown stitch, with the closest one the vocabulary offers.
+fn unknown(what: &str, instruction: usize, token: &str) -> KnitError {
+    let closest = suggest(token);
+    KnitError::Pattern(format!(
+        "{what}, instruction {instruction}: unknown stitch \"{token}\" (did you mean \
+         \"{closest}\"?)"
+    ))
+}

@@ -1,0 +1,208 @@
+//! Row headers (`Row 1 (RS):`, `Rows 2-4:`, `Rnd 3:`, `All WS rows:`): which rows a statement
+//! is for ([`parse_header`]), and, over all the statements, which statement and which side
+//! each row of the repeat has ([`RowSheet`]).
+
+use super::MAX_KNITSPEAK_ROWS;
+use crate::error::{KnitError, Result};
+
+/// Which rows a statement is for.
+pub(super) enum Rows {
+    Numbers(Vec<usize>),
+    AllOfSide(bool),
+    AllEven,
+}
+
+/// What a header says.
+pub(super) struct Header {
+    rows: Rows,
+    /// `Rnd` / `Round`: worked in the round.
+    round: bool,
+    /// `(RS)` / `(WS)`, if given: whether its rows are right-side rows.
+    side: Option<bool>,
+}
+
+/// Reads a header (the text before a statement's `:`).
+pub(super) fn parse_header(header: &str) -> Result<Header> {
+    let h = header.trim().to_lowercase();
+    let side = if h.contains("(rs)") || h.contains("right side") {
+        Some(true)
+    } else if h.contains("(ws)") || h.contains("wrong side") {
+        Some(false)
+    } else {
+        None
+    };
+    if let Some(rest) = h.strip_prefix("all ") {
+        let rest = rest.replace('-', " ");
+        let rows = if rest.starts_with("rs") || rest.starts_with("right side") {
+            Rows::AllOfSide(true)
+        } else if rest.starts_with("ws") || rest.starts_with("wrong side") {
+            Rows::AllOfSide(false)
+        } else if rest.starts_with("even") {
+            Rows::AllEven
+        } else {
+            return Err(bad_header(header));
+        };
+        // "All WS rows" says its side by what it covers, not by a (WS).
+        return Ok(Header {
+            rows,
+            round: false,
+            side: None,
+        });
+    }
+    let (words, round) = if let Some(r) = strip_any(&h, &["rounds", "round", "rnds", "rnd"]) {
+        (r, true)
+    } else if let Some(r) = strip_any(&h, &["rows", "row"]) {
+        (r, false)
+    } else {
+        return Err(bad_header(header));
+    };
+    let words = words.split(['(', '[']).next().unwrap_or("");
+    let mut numbers = Vec::new();
+    for part in words.replace(" and ", ",").replace('&', ",").split(',') {
+        let part = part.trim().trim_start_matches("and ").trim();
+        if part.is_empty() {
+            continue;
+        }
+        if let Some((a, b)) = part.split_once(['-', '–']) {
+            let (a, b) = (number(a, header)?, number(b, header)?);
+            if b < a || b - a > MAX_KNITSPEAK_ROWS {
+                return Err(bad_header(header));
+            }
+            numbers.extend(a..=b);
+        } else {
+            numbers.push(number(part, header)?);
+        }
+    }
+    if numbers.is_empty() {
+        return Err(bad_header(header));
+    }
+    Ok(Header {
+        rows: Rows::Numbers(numbers),
+        round,
+        side,
+    })
+}
+
+fn strip_any<'a>(s: &'a str, words: &[&str]) -> Option<&'a str> {
+    words.iter().find_map(|w| s.strip_prefix(w))
+}
+
+fn number(s: &str, header: &str) -> Result<usize> {
+    s.trim().parse().map_err(|_| bad_header(header))
+}
+
+fn bad_header(header: &str) -> KnitError {
+    KnitError::Pattern(format!(
+        "\"{}\" is not a row header: write \"Row 1 (RS):\", \"Rows 2 and 4:\", \"Rnd 3:\" or \
+         \"All WS rows:\"",
+        header.trim()
+    ))
+}
+
+/// What the headers, taken together, say about the rows: which statement each row reads and
+/// on which side it is worked. Statements are numbered from 0 in the order written.
+#[derive(Default)]
+pub(super) struct RowSheet {
+    /// Some header says `Rnd` / `Round`: every row is a right-side row.
+    in_round: bool,
+    /// (row, is RS) from the first header that says its side.
+    side_ref: Option<(usize, bool)>,
+    /// Per row number, the side its header gave.
+    explicit: Vec<Option<bool>>,
+    /// Per row number, the statement that names it.
+    defined: Vec<Option<usize>>,
+    /// `All WS rows` / `All RS rows`, by `usize::from(is RS)`.
+    by_side: [Option<usize>; 2],
+    /// `All even-numbered rows`.
+    even: Option<usize>,
+}
+
+impl RowSheet {
+    /// Records that statement `index`, whose header `what` reads as `header`, covers its rows.
+    pub(super) fn cover(&mut self, header: Header, what: &str, index: usize) -> Result<()> {
+        self.in_round |= header.round;
+        match header.rows {
+            Rows::AllOfSide(rs) => self.by_side[usize::from(rs)] = Some(index),
+            Rows::AllEven => self.even = Some(index),
+            Rows::Numbers(numbers) => {
+                for n in numbers {
+                    if n == 0 || n > MAX_KNITSPEAK_ROWS {
+                        return Err(KnitError::Pattern(format!(
+                            "{what}: row numbers run from 1 to {MAX_KNITSPEAK_ROWS}, not {n}"
+                        )));
+                    }
+                    if self.defined.len() < n {
+                        self.defined.resize(n, None);
+                        self.explicit.resize(n, None);
+                    }
+                    self.defined[n - 1] = Some(index);
+                    if let Some(rs) = header.side {
+                        self.explicit[n - 1] = Some(rs);
+                        self.side_ref.get_or_insert((n, rs));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The rows of one vertical repeat, bottom up: (row number, is RS, statement). Flat
+    /// knitting with an odd number of rows that alternate sides turns over between repeats,
+    /// so its rows come twice, the second time on the other side and numbered on from the
+    /// first (see the module docs of [`super`]).
+    pub(super) fn plan(&self) -> Result<Vec<(usize, bool, usize)>> {
+        let (ref_row, ref_rs) = self.side_ref.unwrap_or((1, true));
+        let parity_rs = |row: usize| self.in_round || ((row % 2 == ref_row % 2) == ref_rs);
+        let by_side = self.by_side;
+        let height = self.defined.len().max(
+            if by_side.iter().any(Option::is_some) || self.even.is_some() {
+                2
+            } else {
+                0
+            },
+        );
+        // "All WS rows" after "Row 7" means row 8 too: the repeat ends on a whole pair of rows.
+        let side_of = |row: usize| {
+            self.explicit
+                .get(row - 1)
+                .copied()
+                .flatten()
+                .unwrap_or_else(|| parity_rs(row))
+        };
+        let height = if height % 2 == 1
+            && (by_side[usize::from(side_of(height + 1))].is_some() || self.even.is_some())
+        {
+            height + 1
+        } else {
+            height
+        };
+        let mut plan: Vec<(usize, bool, usize)> = Vec::with_capacity(height);
+        for row in 1..=height {
+            let rs = side_of(row);
+            let index = self
+                .defined
+                .get(row - 1)
+                .copied()
+                .flatten()
+                .or(by_side[usize::from(rs)])
+                .or(self.even.filter(|_| row % 2 == 0))
+                .ok_or_else(|| {
+                    KnitError::Pattern(format!(
+                        "row {row} has no instructions (rows 1 to {height} must all be given, \
+                         or covered by \"All WS rows\" / \"All RS rows\")"
+                    ))
+                })?;
+            plan.push((row, rs, index));
+        }
+        // Flat knitting with an odd number of rows turns over between repeats (unless the
+        // headers say otherwise).
+        let alternating = plan.iter().all(|&(row, rs, _)| rs == parity_rs(row));
+        if !self.in_round && height % 2 == 1 && alternating {
+            for r in 0..height {
+                let (row, rs, index) = plan[r];
+                plan.push((row + height, !rs, index));
+            }
+        }
+        Ok(plan)
+    }
+}

@@ -1,0 +1,284 @@
+//! From rows to one repeat: the rows, each with its side and body, laid out on a notional
+//! piece as a knitter works them, and the chart cut from it ([`lay_out`]; the module docs of
+//! [`super`] say how the repeats are phased). Also the repeat arithmetic the chart reader
+//! shares: [`normalised`], [`wrap`], [`lcm`].
+
+use super::body::{Body, Until};
+use super::MAX_KNITSPEAK_WIDTH;
+use crate::error::{KnitError, Result};
+use crate::pattern::instruction::Instruction;
+use crate::pattern::rows::{cells_from_rows, WrittenRow};
+use crate::pattern::vocabulary::Stitched;
+use crate::pattern::{Stitch, StitchPattern};
+
+/// A row to lay out: its number for messages, side, header and body.
+pub(super) struct RowPlan<'a> {
+    pub number: usize,
+    pub right_side: bool,
+    pub what: &'a str,
+    pub body: &'a Body,
+}
+
+impl RowPlan<'_> {
+    /// The instructions of `v` as worked on this row's side.
+    fn resolve(&self, v: &[Stitched]) -> Vec<Instruction> {
+        v.iter().map(|s| s.on_side(self.right_side)).collect()
+    }
+    /// Loops of the row below that `v` works.
+    fn ins_in(&self, v: &[Stitched]) -> usize {
+        v.iter().map(|s| s.ins.stitches_in()).sum()
+    }
+    /// Stitches worked outside an open repeat, and the repeat's width (`None`: a fixed row).
+    fn widths(&self) -> (usize, Option<usize>) {
+        let edges = self.ins_in(&self.body.before) + self.ins_in(&self.body.after);
+        match &self.body.repeat {
+            Some((unit, Until::Times(t))) => (edges + t * self.ins_in(unit), None),
+            Some((unit, _)) => (edges, Some(self.ins_in(unit))),
+            None => (edges, None),
+        }
+    }
+    /// The row over a piece `n` stitches wide, in working order.
+    fn over(&self, n: usize) -> Vec<Instruction> {
+        let (edges, repeat) = self.widths();
+        let mut out = self.resolve(&self.body.before);
+        if let Some((unit, until)) = &self.body.repeat {
+            let times = match (until, repeat) {
+                (Until::Times(t), _) => *t,
+                (_, Some(w)) => (n - edges) / w,
+                _ => 0,
+            };
+            let unit = self.resolve(unit);
+            for _ in 0..times {
+                out.extend_from_slice(&unit);
+            }
+        }
+        out.extend(self.resolve(&self.body.after));
+        out
+    }
+    /// The widths this row fits, for messages.
+    fn describe_width(&self) -> String {
+        match self.widths() {
+            (e, None) => format!("{e} stitches"),
+            (0, Some(w)) => format!("a multiple of {w} stitches"),
+            (e, Some(w)) => format!("a multiple of {w} stitches plus {e}"),
+        }
+    }
+}
+
+/// Lays the rows out on a piece and cuts one repeat (see the module docs of [`super`]).
+pub(super) fn lay_out(rows: &[RowPlan]) -> Result<StitchPattern> {
+    for row in rows {
+        if let Some((unit, until)) = &row.body.repeat {
+            let w = row.ins_in(unit);
+            if w == 0 {
+                return Err(KnitError::Pattern(format!(
+                    "{}: the repeat works no stitches of the row below, so it cannot fill the row",
+                    row.what
+                )));
+            }
+            if let Until::Last(n) = until {
+                let after = row.ins_in(&row.body.after);
+                if after != *n {
+                    return Err(KnitError::Pattern(format!(
+                        "{}: the repeat runs \"to last {n} sts\" but {after} stitches follow it",
+                        row.what
+                    )));
+                }
+            }
+        }
+    }
+    // A row of a fixed width makes the chart a panel.
+    if let Some(fixed) = rows.iter().find(|r| r.widths().1.is_none()) {
+        let n = fixed.widths().0;
+        if n > MAX_KNITSPEAK_WIDTH {
+            return Err(KnitError::Pattern(format!(
+                "{}: {n} stitches is wider than the {MAX_KNITSPEAK_WIDTH} a chart may be",
+                fixed.what
+            )));
+        }
+        let mut written = Vec::with_capacity(rows.len());
+        for row in rows {
+            let (edges, repeat) = row.widths();
+            let fits = match repeat {
+                None => edges == n,
+                Some(w) => n >= edges && (n - edges) % w == 0,
+            };
+            if !fits {
+                return Err(KnitError::Pattern(format!(
+                    "Row {} needs {} but Row {} is {n} stitches wide: the rows do not fit one \
+                     piece",
+                    row.number,
+                    row.describe_width(),
+                    fixed.number
+                )));
+            }
+            let instructions = row.over(n);
+            if let Some(count) = row.body.count {
+                let out: usize = instructions.iter().map(|i| i.stitches_out()).sum();
+                if out != count {
+                    return Err(KnitError::Pattern(format!(
+                        "{}: the row says ({count} sts) but leaves {out} stitches",
+                        row.what
+                    )));
+                }
+            }
+            written.push(WrittenRow {
+                number: row.number,
+                right_side: row.right_side,
+                instructions,
+            });
+        }
+        return StitchPattern::from_written_rows("knitspeak", &written);
+    }
+
+    // All-over: one repeat W wide.
+    let mut width = 1usize;
+    for row in rows {
+        let w = row.widths().1.unwrap_or(1);
+        width = lcm(width, w);
+        if width > MAX_KNITSPEAK_WIDTH {
+            return Err(KnitError::Pattern(format!(
+                "the rows' repeats need a chart over {MAX_KNITSPEAK_WIDTH} stitches wide to line \
+                 up (Row {} repeats over {w})",
+                row.number
+            )));
+        }
+    }
+    // The piece width, modulo W: every row's edges plus whole repeats.
+    let fits = |n: usize, r: &RowPlan| {
+        let (edges, w) = r.widths();
+        let w = w.unwrap_or(1);
+        n % w == edges % w
+    };
+    let Some(n0) = (0..width).find(|&n| rows.iter().all(|r| fits(n, r))) else {
+        let (a, b) = rows
+            .iter()
+            .enumerate()
+            .flat_map(|(i, a)| rows[i + 1..].iter().map(move |b| (a, b)))
+            .find(|(a, b)| !fits_any_with(a, b))
+            .unwrap_or((&rows[0], &rows[rows.len() - 1]));
+        return Err(KnitError::Pattern(format!(
+            "Row {} needs {} but Row {} needs {}: no width fits both",
+            a.number,
+            a.describe_width(),
+            b.number,
+            b.describe_width()
+        )));
+    };
+    // Stitch counts per repeat, with the row-balance messages of `rows`.
+    let per_repeat: Vec<WrittenRow> = rows
+        .iter()
+        .map(|r| {
+            let unit = r.body.repeat.as_ref().map_or(&[][..], |(u, _)| &u[..]);
+            let w = r.ins_in(unit).max(1);
+            let unit = r.resolve(unit);
+            WrittenRow {
+                number: r.number,
+                right_side: r.right_side,
+                instructions: unit
+                    .iter()
+                    .copied()
+                    .cycle()
+                    .take(unit.len() * (width / w))
+                    .collect(),
+            }
+        })
+        .collect();
+    cells_from_rows(&per_repeat).map_err(|e| match e {
+        KnitError::Pattern(m) => {
+            KnitError::Pattern(format!("{m} (counted over one {width}-stitch repeat)"))
+        }
+        other => other,
+    })?;
+
+    let max_edges = rows.iter().map(|r| r.widths().0).max().unwrap_or(0);
+    let min_n = 2 * max_edges + 4 * width;
+    let n = min_n + (n0 + width - min_n % width) % width;
+    let written: Vec<WrittenRow> = rows
+        .iter()
+        .map(|r| WrittenRow {
+            number: r.number,
+            right_side: r.right_side,
+            instructions: r.over(n),
+        })
+        .collect();
+    let cells = cells_from_rows(&written)?;
+    // Columns (from the piece's left edge) where each row has an instruction boundary with as
+    // many loops worked as stitches made so far.
+    let mut clean = vec![true; n + 1];
+    for row in &written {
+        let mut row_clean = vec![false; n + 1];
+        let (mut i, mut o) = (0usize, 0usize);
+        row_clean[if row.right_side { n } else { 0 }] = true;
+        for ins in &row.instructions {
+            i += ins.stitches_in();
+            o += ins.stitches_out();
+            if i == o && i <= n {
+                row_clean[if row.right_side { n - i } else { i }] = true;
+            }
+        }
+        for (c, ok) in clean.iter_mut().zip(row_clean) {
+            *c &= ok;
+        }
+    }
+    // Prefer the chart a knitter draws: the first row's repeat starting at the chart's edge
+    // where that row starts (the right edge for a RS row).
+    let lo = max_edges + width;
+    let first = &rows[0];
+    let before = first.ins_in(&first.body.before);
+    let preferred = if first.right_side {
+        lo + (n - before - lo % width) % width
+    } else {
+        lo + (before + width - lo % width) % width
+    };
+    let start = std::iter::once(preferred)
+        .chain(lo..lo + width)
+        .find(|&a| clean[a])
+        .unwrap_or(lo);
+    let window = cells
+        .iter()
+        .map(|row| row[start..start + width].to_vec())
+        .collect();
+    StitchPattern::from_rows("knitspeak", normalised(window, width))
+}
+
+/// Whether two rows' repeats can share a piece width.
+fn fits_any_with(a: &RowPlan, b: &RowPlan) -> bool {
+    let (ea, wa) = a.widths();
+    let (eb, wb) = b.widths();
+    let (wa, wb) = (wa.unwrap_or(1), wb.unwrap_or(1));
+    (0..lcm(wa, wb)).any(|n| n % wa == ea % wa && n % wb == eb % wb)
+}
+
+/// Cells whose offsets were measured on a wider piece, with their offsets wrapped the shorter
+/// way round a chart `width` wide (as [`cells_from_rows`] writes them).
+pub(crate) fn normalised(mut cells: Vec<Vec<Stitch>>, width: usize) -> Vec<Vec<Stitch>> {
+    for row in &mut cells {
+        for c in row.iter_mut() {
+            c.source_offset = wrap(c.source_offset.into(), width);
+            c.land_offset = wrap(c.land_offset.into(), width);
+        }
+    }
+    cells
+}
+
+/// `d` columns along a row `width` wide that repeats, the shorter way round.
+pub(crate) fn wrap(d: i64, width: usize) -> i8 {
+    let w = width as i64;
+    let mut d = d.rem_euclid(w);
+    if d > w / 2 {
+        d -= w;
+    }
+    d as i8
+}
+
+/// The least common multiple of two repeat widths.
+pub(crate) fn lcm(a: usize, b: usize) -> usize {
+    let gcd = |mut x: usize, mut y: usize| {
+        while y != 0 {
+            (x, y) = (y, x % y);
+        }
+        x
+    };
+    a / gcd(a, b) * b
+}

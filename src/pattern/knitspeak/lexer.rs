@@ -1,0 +1,129 @@
+//! Cutting Knitspeak text into pieces: the text into `(header, body)` statements
+//! ([`statements`]), and a row body into tokens ([`tokens`]): separators, the `*` that starts
+//! a repeat, brackets, and the text between them.
+
+/// Words a statement's header starts with (lower case). Also how a Knitspeak text is told from
+/// a chart ([`super::looks_like_knitspeak`]), so both read headers alike.
+const HEADER_WORDS: [&str; 4] = ["row", "rnd", "round", "all "];
+
+/// Whether `lower` (lower case) starts with a row header: a header word, with a `:` after it.
+pub(super) fn opens_statement(lower: &str) -> bool {
+    HEADER_WORDS.iter().any(|w| lower.starts_with(w)) && lower.contains(':')
+}
+
+/// Lines that say something true of the pattern but nothing a chart needs.
+fn ignorable(line: &str) -> bool {
+    let l = line.trim().to_lowercase();
+    [
+        "rep ",
+        "repeat ",
+        "multiple of",
+        "(multiple of",
+        "work rows",
+        "work rnds",
+    ]
+    .iter()
+    .any(|w| l.starts_with(w))
+        && !l.contains(':')
+}
+
+/// Splits the text into `(header, body)` statements. A header runs to its `:`; a body runs to
+/// the next header (a new line, or a row word after a full stop).
+pub(super) fn statements(text: &str) -> Vec<(String, String)> {
+    let mut out: Vec<(String, String)> = Vec::new();
+    for line in text.lines() {
+        let mut rest = line.trim();
+        while !rest.is_empty() {
+            if ignorable(rest) {
+                break;
+            }
+            let Some(colon) = rest.find(':') else {
+                // A continuation of the previous body.
+                if let Some(last) = out.last_mut() {
+                    last.1.push(' ');
+                    last.1.push_str(rest);
+                } else {
+                    out.push((rest.to_string(), String::new()));
+                }
+                break;
+            };
+            let header = rest[..colon].to_string();
+            let after = &rest[colon + 1..];
+            let end = next_header(after).unwrap_or(after.len());
+            out.push((header, after[..end].trim().to_string()));
+            rest = after[end..].trim();
+        }
+    }
+    out
+}
+
+/// Where the next statement starts in `s`: a row word right after a full stop.
+fn next_header(s: &str) -> Option<usize> {
+    // ASCII lower case keeps byte offsets, so they index `s` too.
+    let lower = s.to_ascii_lowercase();
+    let mut from = 0;
+    while let Some(dot) = lower[from..].find('.') {
+        let at = from + dot + 1;
+        let next = lower[at..].trim_start();
+        let start = lower.len() - next.len();
+        if opens_statement(next) || ignorable(next) {
+            return Some(start);
+        }
+        from = at;
+    }
+    None
+}
+
+/// A lexical token of a row body.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Tok {
+    /// `,`, `;` or `.`: between instructions.
+    Sep,
+    /// `*`: a repeat starts.
+    Star,
+    Open(char),
+    Close(char),
+    /// Everything else: an instruction, `3 times`, `rep from * to end`, `18 sts`.
+    Text(String),
+}
+
+/// A row body's tokens, in order.
+pub(super) fn tokens(body: &str) -> Vec<Tok> {
+    let mut out = Vec::new();
+    let mut text = String::new();
+    let flush = |text: &mut String, out: &mut Vec<Tok>| {
+        let t = text.trim();
+        if !t.is_empty() {
+            out.push(Tok::Text(t.to_string()));
+        }
+        text.clear();
+    };
+    for ch in body.chars() {
+        match ch {
+            ',' | ';' | '.' => {
+                flush(&mut text, &mut out);
+                out.push(Tok::Sep);
+            }
+            // The `*` of `rep from *` belongs to its text: the body grammar reads that phrase
+            // whole (see `vocabulary::after_repeat_from`).
+            '*' if text.trim_end().to_lowercase().ends_with("from") => text.push(ch),
+            '*' => {
+                flush(&mut text, &mut out);
+                if out.last() != Some(&Tok::Star) {
+                    out.push(Tok::Star);
+                }
+            }
+            '[' | '(' => {
+                flush(&mut text, &mut out);
+                out.push(Tok::Open(ch));
+            }
+            ']' | ')' => {
+                flush(&mut text, &mut out);
+                out.push(Tok::Close(ch));
+            }
+            _ => text.push(ch),
+        }
+    }
+    flush(&mut text, &mut out);
+    out
+}

@@ -1,0 +1,121 @@
+//! Written row instructions in Knitspeak (the stitch-maps dialect knitters paste from books
+//! and websites), read into the chart of one horizontal and vertical repeat of the fabric.
+//!
+//! # What it reads
+//!
+//! - Row headers: `Row 1 (RS):`, `Row 2:`, `Rows 2, 3, and 4:`, `Rows 5-8:`, `Rnd 1:` /
+//!   `Rnds 1 and 2:` / `Round 3:` (in the round every row is worked from the right side),
+//!   `All WS rows:`, `All RS rows:`, `All even-numbered rows:`. Statements may share a line
+//!   (`Row 1: Knit. Row 2: Purl.`). `Repeat rows 1-4.` and `Multiple of 6 sts plus 5.` lines
+//!   are accepted and ignored: the chart repeats anyway.
+//! - Sides: a header's `(RS)` / `(WS)` sets the side of its rows; other rows of flat knitting
+//!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
+//!   number of rows turns over between repeats, so the chart holds the rows twice, the second
+//!   time on the other side (rows `h+1 .. 2h` in messages).
+//! - Repeats: `*k2, p2; rep from *`, `rep from * to end` / `across`, `rep from * to last 3
+//!   sts, k3` (the stitches after the repeat must be exactly that many), `rep from * 2 more
+//!   times` (a fixed count), stitches before and after the repeat, `[k1, p1] 3 times`, `(yo,
+//!   k1) twice`, `k2tog 3 times`, `k to end` / `k to last 3 sts` / `Knit.` / `Purl.` (a
+//!   one-stitch repeat), and stitch counts `(18 sts)` (checked on rows of a fixed width).
+//! - Stitches (any case; `-` and spaces are interchangeable), as listed once in
+//!   [`super::vocabulary`]: `k`, `p` with counts (`k2`, `K 2`, `knit 2`), `k tbl` / `k1-tbl` /
+//!   `p2 tbl`, `sl1` / `sl 2 pwise wyif` / `sl1 wyib` (without `wyib`/`wyif` the yarn is held
+//!   on the wrong side: in back on a RS row, in front on a WS row), `yo`, `m1` = `m1l`, `m1r`,
+//!   `k2tog`, `ssk` (`skp`), `p2tog`, `ssp`, `k3tog`, `sssk`, `sk2p` (`sl1-k2tog-psso`), `cdd`
+//!   (`s2kp`, `sl2-k1-p2sso`), `MB` (bobble), crosses `m/n RC`, `LC`, `RPC`, `LPC` with `m, n`
+//!   up to 6, `1/1 RT`, `LT`, `RPT`, `LPT`, and the aliases `C4B` = `2/2 RC`, `C4F` = `2/2 LC`
+//!   (any even `CnB`/`CnF`), `T2B`/`T2F` = `1/1 RT`/`LT`, `T3B`/`T3F` = `2/1 RPC`/`LPC`,
+//!   `T4B`/`T4F` = `2/2 RPC`/`LPC`.
+//!
+//! An unknown stitch or a malformed row is an error naming the row, the instruction (counted
+//! from 1 in the order written) and the token, with the closest stitch this reader knows:
+//! nothing is knitted from a pattern it only half understood.
+//!
+//! # From rows to one repeat (the phase of the repeats)
+//!
+//! The rows are laid out on a notional flat piece, exactly as a knitter works it: a RS row
+//! from the right edge leftwards, a WS row from the left edge rightwards, each with its
+//! stitches before the repeat, the repeat as many times as fits, and its stitches after.
+//!
+//! - If some row has no open-ended repeat (a panel such as `P2, k12, p2`), the piece is that
+//!   wide, every other row must fit it (its repeat filling what its edge stitches leave), and
+//!   the chart is the whole piece.
+//! - Otherwise the chart is one horizontal repeat, `W` = the least common multiple of the rows'
+//!   repeat widths (in stitches worked), at most [`MAX_KNITSPEAK_WIDTH`]. The piece width `N`
+//!   must fit every row (`N = before + after + k * repeat`); a row that wants a multiple of 4
+//!   and another a multiple of 4 plus 2 is an error. Because RS rows are measured from the
+//!   right edge and WS rows from the left, `N` fixes how the rows' repeats line up, which is
+//!   what a knitter's "multiple of 6 plus 5" means. The chart is the `W` columns of a wide
+//!   piece (`N` a valid width, large enough to have edges well away from the middle) starting
+//!   at the first column, counted from the piece's left edge, where no row has an instruction
+//!   across the chart's edge; if every column cuts some row's cable, the chart still starts
+//!   there and the chart's cells carry the cable across its edge (the fabric is the same).
+//!
+//! Stitch counts are checked per chart repeat before anything is laid out: every row must
+//! work the loops the row below left (wrapping from the last row to the first) and, since
+//! knitwear knits on a lattice of a fixed width, keep its own count (see [`super::rows`]).
+//!
+//! # Files
+//!
+//! This file is the front door ([`parse_knitspeak`], [`looks_like_knitspeak`]) and runs the
+//! steps, each in its own file: [`lexer`] cuts the text into `(header, body)` statements and a
+//! body into tokens; [`headers`] reads a header and works out which statement and side each
+//! row of the repeat has; [`body`] reads a row body (its stitches, its repeat, its stitch
+//! count); [`layout`] lays the rows out on a piece and cuts one repeat.
+
+mod body;
+mod headers;
+mod layout;
+mod lexer;
+
+pub(crate) use layout::{lcm, normalised, wrap};
+
+use self::body::parse_body;
+use self::headers::{parse_header, RowSheet};
+use self::layout::{lay_out, RowPlan};
+use self::lexer::{opens_statement, statements};
+use super::StitchPattern;
+use crate::error::{KnitError, Result};
+
+/// Widest chart a Knitspeak pattern may make (the least common multiple of its rows' repeats,
+/// or a panel's width).
+pub const MAX_KNITSPEAK_WIDTH: usize = 256;
+/// Most rows a Knitspeak pattern may number.
+pub const MAX_KNITSPEAK_ROWS: usize = 1024;
+
+/// Reads Knitspeak text (see the module docs) into a pattern whose chart is as seen on the
+/// right side, row 1 at the bottom.
+pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
+    let statements = statements(text);
+    if statements.is_empty() {
+        return Err(KnitError::Pattern(
+            "no Knitspeak rows found: write e.g. \"Row 1 (RS): *k2, p2; rep from *.\"".into(),
+        ));
+    }
+    // Statement by statement, so that the first error in the text is the one reported.
+    let mut sheet = RowSheet::default();
+    let mut bodies = Vec::with_capacity(statements.len());
+    for (header, body) in &statements {
+        let rows = parse_header(header)?;
+        let what = header.trim().to_string();
+        let parsed = parse_body(body, &what)?;
+        sheet.cover(rows, &what, bodies.len())?;
+        bodies.push((what, parsed));
+    }
+    let rows: Vec<RowPlan> = sheet
+        .plan()?
+        .into_iter()
+        .map(|(number, right_side, index)| RowPlan {
+            number,
+            right_side,
+            what: &bodies[index].0,
+            body: &bodies[index].1,
+        })
+        .collect();
+    lay_out(&rows)
+}
+
+/// Whether `text` looks like Knitspeak rather than a symbol chart: it starts with a row header.
+pub fn looks_like_knitspeak(text: &str) -> bool {
+    opens_statement(&text.trim_start().to_lowercase())
+}
