@@ -525,3 +525,21 @@ fn charts_with_a_legend() {
     let m = pattern_error(StitchPattern::from_chart("kk\nXY = k"));
     assert!(m.contains("one symbol"), "{m}");
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(512))]
+
+    /// Any text, as a whole pattern or as one stitch of a row, is a pattern or an error
+    /// with a message: never a panic (a cable name ending in a two-byte character once
+    /// split inside it).
+    #[test]
+    fn any_text_reads_as_a_pattern_or_an_error(text in "\\PC{0,40}", stitch in "[ckptCKPT]?[0-9]{0,2}\\PC{0,3}") {
+        for input in [text.clone(), format!("Row 1: k2, {stitch}."), format!("Row 1 (RS): *{stitch}; rep from *.")] {
+            if let Err(e) = StitchPattern::from_knitspeak(&input) {
+                proptest::prop_assert!(!e.to_string().is_empty());
+            }
+            let _ = StitchPattern::from_chart(&input);
+            let _ = StitchPattern::from_text(&input);
+        }
+    }
+}
