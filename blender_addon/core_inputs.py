@@ -124,6 +124,7 @@ def core_settings(settings: Mapping[str, Any], scene: bpy.types.Scene) -> dict[s
         "yarn_radius": radius if radius > 0 else None,
         "fluffiness": float(settings["fluffiness"]),
         "ring_segments": int(settings["ring_segments"]),
+        "plies": int(settings["plies"]),
         "samples_per_loop": int(settings["samples_per_loop"]),
         "tension": float(settings["tension"]),
         "kappa": float(settings["kappa"]),

@@ -32,6 +32,7 @@ def _yarn(layout: bpy.types.UILayout, settings: bpy.types.AnyType) -> None:
     layout.prop(settings, "fluffiness")
     col = layout.column(align=True)
     col.prop(settings, "ring_segments")
+    col.prop(settings, "plies")
     col.prop(settings, "samples_per_loop")
     layout.prop(settings, "tension")
     layout.prop(settings, "kappa")

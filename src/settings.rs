@@ -260,6 +260,14 @@ pub const RING_SEGMENTS: Setting = Setting {
     ..int("ring_segments", "Ring Segments", 6.0, (3.0, 64.0))
 };
 
+/// Plies twisted round each other; the upper end is [`crate::geometry::plies::MAX_PLIES`].
+pub const PLIES: Setting = Setting {
+    unit: "plies",
+    doc: "Strands twisted round each other in the yarn: grooves that turn along it (1 = a \
+          round strand)",
+    ..int("plies", "Plies", 1.0, (1.0, 8.0))
+};
+
 pub const SAMPLES_PER_LOOP: Setting = Setting {
     unit: "rings per stitch",
     doc: "Rings along the yarn per stitch loop (more = smoother curves, heavier)",
@@ -389,6 +397,7 @@ pub const KNIT_SETTINGS: &[Setting] = &[
     YARN_RADIUS,
     FLUFFINESS,
     RING_SEGMENTS,
+    PLIES,
     SAMPLES_PER_LOOP,
     TENSION,
     KAPPA,

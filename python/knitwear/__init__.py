@@ -48,12 +48,11 @@ from ._core import (
 def knit(surface: GridSurface | MeshSurface, pattern: Pattern, **settings: Any) -> KnitResult:
     """Knit ``pattern`` over ``surface``: ``Knit(surface, pattern, **settings).build(surface)``.
 
-    The keyword settings are `Knit`'s (see the README): ``courses``, ``wales``, ``gauge``,
-    ``yarn_radius``, ``stitch_size``, ``fluffiness``, ``ring_segments``, ``samples_per_loop``,
-    ``tension``, ``kappa``, ``seed``, ``colors``, ``color_image``, ``color_variation``,
-    ``threads``, ``budget_bytes``, ``measure_clearance``, and camera-driven detail:
-    ``camera`` (a `Camera`), ``detail_px``, ``mid_quality``, ``far_quality``,
-    ``frustum_margin``, ``cull_back_faces``, ``cull_hidden``, ``hidden_supersampling``,
+    The keyword settings are `Knit`'s: every one `settings()` lists (declared once in the
+    core, with its default, range and unit; the README's table is made from it), and
+    ``gauge``, ``stitch_size``, ``colors``, ``color_image``, ``threads``, ``budget_bytes``,
+    ``measure_clearance``, and for camera-driven detail ``camera`` (a `Camera`),
+    ``detail_px``, ``mid_quality``, ``far_quality``, ``stitch_levels`` and
     ``seen_triangles``. ``stats["seconds"]`` is the build's.
     """
     return Knit(surface, pattern, **settings).build(surface)

@@ -34,6 +34,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::frames::{frame_from_tangent, ring_frame};
+use super::plies::{ply_radius, twist};
 
 /// Settings of the swept yarn.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,6 +48,12 @@ pub struct BundleSettings {
     /// Relative random brightness variation of vertex colours, in [0, 1].
     pub color_variation: f32,
     pub seed: u64,
+    /// Plies twisted round each other, 1 (a plain tube) to [`super::plies::MAX_PLIES`]
+    /// ([`super::plies`]).
+    pub plies: usize,
+    /// Full-density samples per stitch loop of the piece: the plies' twist is counted in
+    /// them.
+    pub samples_per_loop: usize,
 }
 
 /// Element counts of one piece's bundle (closed form, for preallocation and budgets).
@@ -203,6 +210,11 @@ pub fn build_bundle(
         })
         .unzip();
 
+    // The plies' twist at ring i: counted in the piece's full-density samples.
+    let ply_twist = |i: usize| match draws {
+        Some(d) => twist(d.samples[i], settings.samples_per_loop),
+        None => twist(i, settings.samples_per_loop),
+    };
     // Ring directions, kept for the apexes, and ring frames for apexes at full-detail angles.
     let mut dirs = vec![Vec3::ZERO; rings * m];
     let mut frames = vec![(Vec3::ZERO, Vec3::ZERO); if draws.is_some() { rings } else { 0 }];
@@ -219,10 +231,12 @@ pub fn build_bundle(
         if let Some(f) = frames.get_mut(i) {
             *f = (a, b);
         }
+        let twist = ply_twist(i);
         for k in 0..m {
             let d = cos[k] * a + sin[k] * b;
             dirs[i * m + k] = d;
-            let p = points[i] + r * d;
+            let rho = ply_radius(settings.plies, TAU * k as f32 / m as f32, twist);
+            let p = points[i] + r * rho * d;
             out.positions[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&p.to_array());
         }
     }
@@ -313,12 +327,16 @@ pub fn build_bundle(
                 };
                 let pick = (((bits & 0xFFFF) * mf as u64) >> 16) as usize;
                 let push = 1.0 + settings.fluffiness * unit24(bits >> 16);
-                let apex_dir = match frames.get(apex_ring) {
+                let (apex_dir, apex_angle) = match frames.get(apex_ring) {
                     // At the full-detail ring angle, in this ring's frame.
-                    Some(&(a, b)) => full_cos[pick] * a + full_sin[pick] * b,
-                    None => dirs[apex_ring * m + pick],
+                    Some(&(a, b)) => (
+                        full_cos[pick] * a + full_sin[pick] * b,
+                        TAU * pick as f32 / mf as f32,
+                    ),
+                    None => (dirs[apex_ring * m + pick], TAU * pick as f32 / m as f32),
                 };
-                let apex = points[apex_ring] + r * push * apex_dir;
+                let rho = ply_radius(settings.plies, apex_angle, ply_twist(apex_ring));
+                let apex = points[apex_ring] + r * push * rho * apex_dir;
                 let av = apex_base + tri;
                 out.positions[3 * av..3 * av + 3].copy_from_slice(&apex.to_array());
                 let ac = shade(bits >> 40, color);
@@ -357,12 +375,22 @@ pub fn build_bundle(
 
 #[cfg(test)]
 mod tests {
+    use super::super::plies::GROOVE_DEPTH;
     use super::*;
 
     fn straight_yarn(
         samples: &[usize],
         m: usize,
         draws: Option<&FullDensityDraws>,
+    ) -> (Vec<f32>, Vec<f32>) {
+        straight_yarn_of(samples, m, draws, 1)
+    }
+
+    fn straight_yarn_of(
+        samples: &[usize],
+        m: usize,
+        draws: Option<&FullDensityDraws>,
+        plies: usize,
     ) -> (Vec<f32>, Vec<f32>) {
         let points: Vec<Vec3> = samples
             .iter()
@@ -375,6 +403,8 @@ mod tests {
             fluffiness: 0.8,
             color_variation: 0.2,
             seed: 9,
+            plies,
+            samples_per_loop: 16,
         };
         let counts = bundle_counts(samples.len(), m, false);
         let mut positions = vec![0.0; 3 * counts.vertices];
@@ -393,6 +423,44 @@ mod tests {
             &mut bufs,
         );
         (positions, colors)
+    }
+
+    /// Three plies: the ring points of a straight yarn lie on the outline of three plies
+    /// (the yarn's radius over a ply, less in the grooves) and the grooves turn along the
+    /// yarn; the topology and the colours are the single strand's.
+    #[test]
+    fn plies_groove_the_strand_and_turn_along_it() {
+        let (n, m) = (32usize, 12usize);
+        let all: Vec<usize> = (0..n).collect();
+        let (round, round_colours) = straight_yarn_of(&all, m, None, 1);
+        let (plied, plied_colours) = straight_yarn_of(&all, m, None, 3);
+        assert_eq!(round.len(), plied.len());
+        assert_eq!(round_colours, plied_colours);
+        // Ring point k of ring i: its distance from the axis (the yarn runs along x).
+        let radius = |buf: &[f32], i: usize, k: usize| {
+            let v = 3 * (i * m + k);
+            buf[v + 1].hypot(buf[v + 2])
+        };
+        for i in 0..n {
+            let radii: Vec<f32> = (0..m).map(|k| radius(&plied, i, k)).collect();
+            let (lo, hi) = radii
+                .iter()
+                .fold((f32::MAX, 0.0f32), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+            assert!(
+                hi <= 0.25 + 1e-5 && lo >= 0.25 * (1.0 - GROOVE_DEPTH) - 1e-5,
+                "{radii:?}"
+            );
+            assert!(hi - lo > 0.01, "ring {i} is round: {radii:?}");
+            assert!((0..m).all(|k| (radius(&round, i, k) - 0.25).abs() < 1e-5));
+        }
+        // The deepest groove moves round the ring from one ring to the next.
+        let deepest = |i: usize| {
+            (0..m)
+                .min_by(|&a, &b| radius(&plied, i, a).total_cmp(&radius(&plied, i, b)))
+                .unwrap()
+        };
+        let moved = (1..n).filter(|&i| deepest(i) != deepest(i - 1)).count();
+        assert!(moved >= n / 4, "the grooves do not turn: {moved} of {n}");
     }
 
     /// Drawn from the full-density stream, a span that keeps every sample is the whole
@@ -443,6 +511,8 @@ mod tests {
             fluffiness: 0.8,
             color_variation: 0.2,
             seed: 9,
+            plies: 1,
+            samples_per_loop: 16,
         };
         let counts = bundle_counts(rings, m, false);
         let mut positions = vec![0.0; 3 * counts.vertices];

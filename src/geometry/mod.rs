@@ -2,6 +2,7 @@
 
 mod bundle;
 mod frames;
+pub mod plies;
 mod subset;
 mod vertex_normals;
 

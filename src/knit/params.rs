@@ -53,6 +53,8 @@ pub struct KnitParams {
     pub fluffiness: f32,
     /// Points per yarn ring, 3..=64. Default: 6.
     pub ring_segments: usize,
+    /// Plies twisted round each other ([`crate::geometry::plies`]), 1..=8. Default: 1.
+    pub plies: usize,
     /// Centreline samples per stitch, 6..=256. Default: 16.
     pub samples_per_loop: usize,
     /// Cardinal spline tension, 0..1 (0: Catmull-Rom). Default: 0.
@@ -90,6 +92,7 @@ impl Default for KnitParams {
             stitch_size: None,
             fluffiness: s::FLUFFINESS.default_f32(),
             ring_segments: s::RING_SEGMENTS.default_usize(),
+            plies: s::PLIES.default_usize(),
             samples_per_loop: s::SAMPLES_PER_LOOP.default_usize(),
             tension: s::TENSION.default_f32(),
             kappa: s::KAPPA.default_f32(),
@@ -109,6 +112,7 @@ pub(super) fn validate(p: &KnitParams) -> Result<()> {
     use crate::settings as s;
     s::FLUFFINESS.check(p.fluffiness)?;
     s::RING_SEGMENTS.check_count(p.ring_segments)?;
+    s::PLIES.check_count(p.plies)?;
     s::SAMPLES_PER_LOOP.check_count(p.samples_per_loop)?;
     s::TENSION.check(p.tension)?;
     s::COLOR_VARIATION.check(p.color_variation)?;

@@ -288,6 +288,8 @@ impl PreparedKnit {
             fluffiness: p.fluffiness,
             color_variation: p.color_variation,
             seed: p.seed,
+            plies: p.plies,
+            samples_per_loop: s,
         };
         // Full-detail pieces first: their triangles are the figure detail is measured against.
         let (full_pieces, built, built_count) = run_in_pool(p.threads, || {

@@ -15,7 +15,7 @@ use crate::texture::knit_texture as core_texture;
 #[pyfunction]
 #[pyo3(signature = (
     surface, pattern, *, width=1024, height=1024, courses=None, wales=None, gauge=None,
-    yarn_radius=None, stitch_size=None, fluffiness=0.5, ring_segments=6, samples_per_loop=16,
+    yarn_radius=None, stitch_size=None, fluffiness=0.5, ring_segments=6, plies=1, samples_per_loop=16,
     tension=0.0, kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15,
     threads=None, budget_bytes=None, measure_clearance=false
 ))]
@@ -33,6 +33,7 @@ fn knit_texture(
     stitch_size: Option<(f32, f32)>,
     fluffiness: f32,
     ring_segments: i64,
+    plies: i64,
     samples_per_loop: i64,
     tension: f32,
     kappa: f32,
@@ -53,6 +54,7 @@ fn knit_texture(
         stitch_size,
         fluffiness,
         ring_segments,
+        plies,
         samples_per_loop,
         tension,
         kappa,

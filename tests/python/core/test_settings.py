@@ -65,7 +65,7 @@ def test_signatures_default_as_the_table_says(callable_: Any) -> None:
     assert checked >= 9
 
 
-@pytest.mark.parametrize(("owner", "function"), [("Knit", "__init__"), ("", "knit_texture")])
+@pytest.mark.parametrize(("owner", "function"), [("Knit", "__new__"), ("", "knit_texture")])
 def test_the_stub_defaults_as_the_table_says(owner: str, function: str) -> None:
     defaults = _stub_defaults(owner, function)
     checked = 0
