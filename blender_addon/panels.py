@@ -18,7 +18,7 @@ class VIEW3D_PT_knitwear(bpy.types.Panel):
     @classmethod
     def poll(cls, context: bpy.types.Context) -> bool:
         obj = context.active_object
-        # A plush object has a panel of its own (plush.py).
+        # A plush object has a panel of its own (plush/operators.py).
         return (
             obj is not None
             and obj.type in {"SURFACE", "MESH"}
