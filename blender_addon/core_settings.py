@@ -9,14 +9,17 @@ from typing import Any
 
 import knitwear
 
-#: The table, by Blender property name.
-BY_PROPERTY: dict[str, dict[str, Any]] = {s["property"]: s for s in knitwear.settings()}
+#: The tables of a knit's and a plush's settings, by Blender property name.
+BY_PROPERTY: dict[str, dict[str, dict[str, Any]]] = {
+    kind: {s["property"]: s for s in knitwear.settings(kind)} for kind in ("knit", "plush")
+}
 
 
-def from_core(prop: str, **ui: Any) -> dict[str, Any]:
-    """Keyword arguments of the bpy property ``prop``: the table's label, doc, add-on
-    default and range, then ``ui`` (which may not override them)."""
-    s = BY_PROPERTY[prop]
+def from_core(prop: str, kind: str = "knit", **ui: Any) -> dict[str, Any]:
+    """Keyword arguments of the bpy property ``prop`` of a ``kind`` ("knit", "plush"): the
+    table's label, doc, add-on default and range, then ``ui`` (which may not override
+    them)."""
+    s = BY_PROPERTY[kind][prop]
     kw: dict[str, Any] = {
         "name": s["label"],
         "description": s["doc"],

@@ -412,17 +412,157 @@ pub const KNIT_SETTINGS: &[Setting] = &[
     HIDDEN_SUPERSAMPLING,
 ];
 
+/// Wales per 10 cm of a plush (the gauge's first number; the paper's fabric has about 48).
+pub const PLUSH_GAUGE_WALES: Setting = Setting {
+    part_of: Some("gauge=(wales, courses)"),
+    label: "Wales / 10 cm",
+    unit: "wales per 10 cm",
+    doc: "Stitches along a course per 10 cm (the paper's fabric: about 48)",
+    default: Some(48.0),
+    ..GAUGE_STITCHES
+};
+
+/// Courses per 10 cm of a plush.
+pub const PLUSH_GAUGE_COURSES: Setting = Setting {
+    part_of: Some("gauge=(wales, courses)"),
+    label: "Courses / 10 cm",
+    unit: "courses per 10 cm",
+    doc: "Courses (rows) per 10 cm along a wale",
+    default: Some(64.0),
+    ..GAUGE_ROWS
+};
+
+pub const PLUSH_COURSES: Setting = Setting {
+    addon_default: Some(96.0),
+    doc: "Courses over the whole surface (along v)",
+    ..COURSES
+};
+
+pub const PLUSH_WALES: Setting = Setting {
+    addon_default: Some(64.0),
+    doc: "Wales over the whole surface (along u)",
+    ..WALES
+};
+
+pub const PILES_PER_STITCH: Setting = Setting {
+    unit: "piles",
+    doc: "Piles grown from each stitch, on a near-square sub-grid (4: 2x2)",
+    ..int("piles_per_stitch", "Piles per Stitch", 1.0, (1.0, 64.0))
+};
+
+/// A pile's length; the core makes it 2.5 stitch widths unless given.
+pub const PILE_LENGTH: Setting = Setting {
+    default: None,
+    addon_default: Some(0.0),
+    addon_why: "0 stands for the core's automatic length (a Blender property cannot be None)",
+    unit: "scene units",
+    doc: "Length of a pile; 0 = automatic (2.5 stitch widths)",
+    ..float("pile_length", "Pile Length", 0.0, (0.0, f64::INFINITY))
+};
+
+/// Half the width of a slice; the core makes it 0.6 pile spacings unless given.
+pub const PILE_RADIUS: Setting = Setting {
+    default: None,
+    addon_default: Some(0.0),
+    addon_why: "0 stands for the core's automatic radius (a Blender property cannot be None)",
+    unit: "scene units",
+    doc: "Half width of a slice; 0 = automatic (0.6 pile spacings)",
+    ..float("pile_radius", "Pile Radius", 0.0, (0.0, f64::INFINITY))
+};
+
+pub const SLICES: Setting = Setting {
+    unit: "quads per pile",
+    doc: "Quads per pile",
+    ..int("slices", "Slices", 8.0, (1.0, 64.0))
+};
+
+/// The angle of the pile's nominal direction from the surface normal.
+pub const LEAN_ANGLE: Setting = Setting {
+    core_keyword: None,
+    part_of: Some("lean=(angle, azimuth)"),
+    unit: "radians",
+    doc: "Angle of the pile's nominal direction from the surface normal",
+    ..float(
+        "lean_angle",
+        "Lean",
+        // The f32 constant, so the core's default is the same bits it always was.
+        std::f32::consts::FRAC_PI_6 as f64,
+        (0.0, 89.0 * std::f64::consts::PI / 180.0),
+    )
+};
+
+/// The azimuth of the lean in the fabric plane.
+pub const LEAN_DIRECTION: Setting = Setting {
+    core_keyword: None,
+    part_of: Some("lean=(angle, azimuth)"),
+    unit: "radians",
+    doc: "Azimuth of the lean in the fabric plane, from the course (u) towards the wale (v)",
+    ..float(
+        "lean_direction",
+        "Lean Direction",
+        -std::f32::consts::FRAC_PI_2 as f64,
+        (-std::f64::consts::TAU, std::f64::consts::TAU),
+    )
+};
+
+/// The largest deviation of a pile from its nominal direction: below 45 degrees, the
+/// paper's bound ([`crate::pile::fractal_noise::THETA_MAX_LIMIT`]).
+pub const THETA_MAX: Setting = Setting {
+    unit: "radians",
+    doc: "Largest deviation of a pile from the nominal direction (theta_max, below 45 \
+          degrees)",
+    ..float(
+        "theta_max",
+        "Noise Angle",
+        (20.0 * std::f32::consts::PI / 180.0) as f64,
+        (0.0, std::f64::consts::FRAC_PI_4 - 1e-6),
+    )
+};
+
+pub const PLUSH_SEED: Setting = Setting {
+    doc: "Random seed of the noise: same seed, same plush",
+    ..SEED
+};
+
+pub const PRESS_STRENGTH: Setting = Setting {
+    doc: "How far a fully pressed pile bends (0..1)",
+    ..float("press_strength", "Press Strength", 0.9, (0.0, 1.0))
+};
+
+/// Every plush setting with a number, in the order the add-on shows them.
+pub const PLUSH_SETTINGS: &[Setting] = &[
+    PLUSH_GAUGE_WALES,
+    PLUSH_GAUGE_COURSES,
+    PLUSH_COURSES,
+    PLUSH_WALES,
+    PILES_PER_STITCH,
+    PILE_LENGTH,
+    PILE_RADIUS,
+    SLICES,
+    LEAN_ANGLE,
+    LEAN_DIRECTION,
+    THETA_MAX,
+    PLUSH_SEED,
+    PRESS_STRENGTH,
+];
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn every_setting_is_whole_and_its_defaults_in_range() {
-        let mut names: Vec<&str> = KNIT_SETTINGS.iter().map(Setting::property).collect();
+        for table in [KNIT_SETTINGS, PLUSH_SETTINGS] {
+            check_table(table);
+        }
+    }
+
+    fn check_table(table: &[Setting]) {
+        let mut names: Vec<&str> = table.iter().map(Setting::property).collect();
         names.sort_unstable();
         names.dedup();
-        assert_eq!(names.len(), KNIT_SETTINGS.len(), "a name twice");
-        for s in KNIT_SETTINGS {
+        assert_eq!(names.len(), table.len(), "a name twice");
+        for s in table {
             assert!(!s.doc.is_empty() && !s.label.is_empty(), "{}", s.name);
             assert!(s.min <= s.max, "{}", s.name);
             if let Some(d) = s.default {
@@ -437,6 +577,21 @@ mod tests {
                 assert_eq!(s.addon_value().fract(), 0.0, "{}", s.name);
             }
         }
+    }
+
+    /// The plush's angles are the f32 constants the core always used, bit for bit.
+    #[test]
+    fn the_plush_angles_keep_their_bits() {
+        use std::f32::consts::{FRAC_PI_2, FRAC_PI_6, PI};
+        assert_eq!(LEAN_ANGLE.default_f32().to_bits(), FRAC_PI_6.to_bits());
+        assert_eq!(
+            LEAN_DIRECTION.default_f32().to_bits(),
+            (-FRAC_PI_2).to_bits()
+        );
+        assert_eq!(
+            THETA_MAX.default_f32().to_bits(),
+            (20.0f32 * PI / 180.0).to_bits()
+        );
     }
 
     #[test]

@@ -1,7 +1,6 @@
 """Plush settings: one definition shared by the stored settings (``obj.knitwear_plush``) and
 the Plush operator's redo panel, as the knit's `properties` module does for knits."""
 
-import math
 
 import bpy
 from bpy.props import (
@@ -15,6 +14,7 @@ from bpy.props import (
     StringProperty,
 )
 
+from ..core_settings import from_core
 from ..settings_schema import SettingsSchema
 
 SIZE_MODE_ITEMS = [
@@ -51,97 +51,60 @@ class PlushSettingsMixin:
     """Every plush setting, declared once: stored on the object and edited in the redo panel."""
 
     size_mode: EnumProperty(name="Size", items=SIZE_MODE_ITEMS, default="GAUGE")
-    gauge_stitches: FloatProperty(
-        name="Wales / 10 cm",
-        description="Stitches along a course per 10 cm (the paper's fabric: about 48)",
-        default=48.0,
-        min=0.1,
-        soft_max=200.0,
-    )
-    gauge_rows: FloatProperty(
-        name="Courses / 10 cm",
-        description="Courses (rows) per 10 cm along a wale",
-        default=64.0,
-        min=0.1,
-        soft_max=200.0,
-    )
-    courses: IntProperty(
-        name="Courses", description="Courses over the whole surface (along v)",
-        default=96, min=1, max=1_000_000, soft_max=2000,
-    )
-    wales: IntProperty(
-        name="Wales", description="Wales over the whole surface (along u)",
-        default=64, min=1, max=1_000_000, soft_max=2000,
-    )
-    piles_per_stitch: IntProperty(
-        name="Piles per Stitch",
-        description="Piles grown from each stitch, on a near-square sub-grid (4: 2x2)",
-        default=1, min=1, max=64,
-    )
+    gauge_stitches: FloatProperty(**from_core("gauge_stitches", "plush", soft_max=200.0))
+    gauge_rows: FloatProperty(**from_core("gauge_rows", "plush", soft_max=200.0))
+    courses: IntProperty(**from_core("courses", "plush", soft_max=2000))
+    wales: IntProperty(**from_core("wales", "plush", soft_max=2000))
+    piles_per_stitch: IntProperty(**from_core("piles_per_stitch", "plush"))
     pile_length: FloatProperty(
-        name="Pile Length",
-        description="Length of a pile; 0 = automatic (2.5 stitch widths)",
-        default=0.0, min=0.0, soft_max=0.1, subtype="DISTANCE", unit="LENGTH", precision=4,
+        **from_core(
+            "pile_length", "plush", soft_max=0.1, subtype="DISTANCE", unit="LENGTH", precision=4
+        )
     )
     pile_radius: FloatProperty(
-        name="Pile Radius",
-        description="Half width of a slice; 0 = automatic (0.6 pile spacings)",
-        default=0.0, min=0.0, soft_max=0.05, subtype="DISTANCE", unit="LENGTH", precision=4,
+        **from_core(
+            "pile_radius", "plush", soft_max=0.05, subtype="DISTANCE", unit="LENGTH", precision=4
+        )
     )
-    slices: IntProperty(
-        name="Slices", description="Quads per pile", default=8, min=1, max=64,
-    )
-    lean_angle: FloatProperty(
-        name="Lean",
-        description="Angle of the pile's nominal direction from the surface normal",
-        default=math.radians(30.0), min=0.0, max=math.radians(89.0), subtype="ANGLE",
-    )
-    lean_direction: FloatProperty(
-        name="Lean Direction",
-        description="Azimuth of the lean in the fabric plane, from the course (u) towards the "
-        "wale (v)",
-        default=math.radians(-90.0), min=-2 * math.pi, max=2 * math.pi, subtype="ANGLE",
-    )
-    theta_max: FloatProperty(
-        name="Noise Angle",
-        description="Largest deviation of a pile from the nominal direction (theta_max, below "
-        "45 degrees)",
-        default=math.radians(20.0), min=0.0, max=math.radians(44.9), subtype="ANGLE",
-    )
+    slices: IntProperty(**from_core("slices", "plush"))
+    lean_angle: FloatProperty(**from_core("lean_angle", "plush", subtype="ANGLE"))
+    lean_direction: FloatProperty(**from_core("lean_direction", "plush", subtype="ANGLE"))
+    theta_max: FloatProperty(**from_core("theta_max", "plush", subtype="ANGLE"))
     noise_scales: StringProperty(
         name="Noise Scales",
         description="Sampling coefficients k of the fractal noise, e.g. '1 2 4 8' (larger k: "
         "coarser features, more weight)",
         default="1 2 4 8",
     )
-    seed: IntProperty(
-        name="Seed", description="Random seed of the noise: same seed, same plush",
-        default=0, min=0,
-    )
+    seed: IntProperty(**from_core("seed", "plush"))
     color_mode: EnumProperty(name="Colour", items=COLOR_MODE_ITEMS, default="SINGLE")
     color_1: _color_prop(0)
     color_2: _color_prop(1)
     color_3: _color_prop(2)
     color_4: _color_prop(3)
     color_count: IntProperty(
-        name="Colours", description="How many colours the stripes cycle through",
-        default=2, min=1, max=MAX_COLORS,
+        name="Colours",
+        description="How many colours the stripes cycle through",
+        default=2,
+        min=1,
+        max=MAX_COLORS,
     )
     stripe_height: IntProperty(
-        name="Stripe Height", description="Courses per stripe", default=8, min=1,
+        name="Stripe Height",
+        description="Courses per stripe",
+        default=8,
+        min=1,
     )
     color_image_name: StringProperty(
-        name="Image", description="Image giving each pile its colour at the pile's (u,v)",
+        name="Image",
+        description="Image giving each pile its colour at the pile's (u,v)",
     )
     press_image_name: StringProperty(
         name="Press Map",
         description="Image whose brightness (0..1) over (u,v) says where the fabric was "
         "pressed: the pile bends towards the fabric there",
     )
-    press_strength: FloatProperty(
-        name="Press Strength", description="How far a fully pressed pile bends (0..1)",
-        default=0.9, min=0.0, max=1.0, subtype="FACTOR",
-    )
+    press_strength: FloatProperty(**from_core("press_strength", "plush", subtype="FACTOR"))
 
 
 #: The plush settings as the scripting API sees them.
@@ -164,7 +127,9 @@ class PlushSettings(PlushSettingsMixin, bpy.types.PropertyGroup):
 
     is_plush: BoolProperty(name="Is Plush", default=False)
     source: PointerProperty(
-        name="Source", type=bpy.types.Object, poll=_poll_source,
+        name="Source",
+        type=bpy.types.Object,
+        poll=_poll_source,
         description="The surface this plush grows on",
     )
     follow_camera: BoolProperty(

@@ -284,9 +284,10 @@ def knit_texture(
     v, transparent where no yarn is. Same stitches, perturbation and colours as `Knit` with
     the same settings."""
 
-def settings() -> list[dict[str, Any]]:
-    """Every knit setting as declared once in the core: name, core_keyword, part_of,
-    property, label, type, default, addon_default, addon_why, min, max, unit, doc."""
+def settings(kind: str = "knit") -> list[dict[str, Any]]:
+    """Every setting of a knit or a plush (``kind``) as declared once in the core: name,
+    core_keyword, part_of, property, label, type, default, addon_default, addon_why, min,
+    max, unit, doc."""
     ...
 
 def measure_clearance(result: KnitResult) -> tuple[float, float]:

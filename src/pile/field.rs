@@ -14,8 +14,7 @@ use super::slices::{
 };
 use super::{
     check_budget, pile_grid, PileColors, PileParams, DEFAULT_LENGTH_PER_STITCH_WIDTH,
-    DEFAULT_PLUSH_GAUGE, DEFAULT_RADIUS_PER_PILE_SPACING, MAX_PILES_PER_STITCH, MAX_SLICES,
-    MAX_STITCHES_PER_DIRECTION,
+    DEFAULT_PLUSH_GAUGE, DEFAULT_RADIUS_PER_PILE_SPACING,
 };
 use crate::error::{KnitError, Result};
 use crate::output_buffer::zeroed;
@@ -118,21 +117,6 @@ pub struct Plush {
     pub buffers: PileBuffers,
 }
 
-fn check_range<T: PartialOrd + std::fmt::Display + Copy>(
-    name: &str,
-    value: T,
-    lo: T,
-    hi: T,
-) -> Result<()> {
-    if value >= lo && value <= hi {
-        Ok(())
-    } else {
-        Err(KnitError::Parameter(format!(
-            "{name} must be in {lo}..={hi}, not {value}"
-        )))
-    }
-}
-
 fn positive(name: &str, v: Option<f32>) -> Result<()> {
     match v {
         Some(x) if !(x.is_finite() && x > 0.0) => Err(KnitError::Parameter(format!(
@@ -143,34 +127,22 @@ fn positive(name: &str, v: Option<f32>) -> Result<()> {
 }
 
 fn validate(p: &PileParams) -> Result<()> {
-    check_range(
-        "piles per stitch",
-        p.piles_per_stitch,
-        1,
-        MAX_PILES_PER_STITCH,
-    )?;
-    check_range("slices per pile", p.slices, 1, MAX_SLICES)?;
-    for (name, n) in [("courses", p.courses), ("wales", p.wales)] {
+    use crate::settings as s;
+    s::PILES_PER_STITCH.check_count(p.piles_per_stitch)?;
+    s::SLICES.check_count(p.slices)?;
+    for (setting, n) in [(s::PLUSH_COURSES, p.courses), (s::PLUSH_WALES, p.wales)] {
         if let Some(n) = n {
-            check_range(name, n, 1, MAX_STITCHES_PER_DIRECTION)?;
+            setting.check_count(n)?;
         }
     }
-    if let Some((s, r)) = p.gauge {
-        if !(s.is_finite() && r.is_finite() && s > 0.0 && r > 0.0) {
-            return Err(KnitError::Parameter(format!(
-                "gauge must be positive wales and courses per 10 cm, not ({s}, {r})"
-            )));
-        }
+    if let Some((wales, courses)) = p.gauge {
+        s::PLUSH_GAUGE_WALES.check(wales)?;
+        s::PLUSH_GAUGE_COURSES.check(courses)?;
     }
     positive("pile length", p.pile_length)?;
     positive("pile radius", p.pile_radius)?;
     p.nominal.direction()?;
-    if !(p.press_strength.is_finite() && (0.0..=1.0).contains(&p.press_strength)) {
-        return Err(KnitError::Parameter(format!(
-            "press strength must be in 0..=1, not {}",
-            p.press_strength
-        )));
-    }
+    s::PRESS_STRENGTH.check(p.press_strength)?;
     if let Some(a) = p.press_azimuth {
         if !a.is_finite() {
             return Err(KnitError::Parameter(format!(

@@ -37,7 +37,7 @@ use crate::portable_math::sin_cos;
 pub const DEFAULT_SCALES: [usize; 4] = [1, 2, 4, 8];
 /// Default largest deviation from the nominal direction: 20 degrees (0.349 rad). The paper
 /// only says "usually below 45 degrees"; 20 reads as natural variation, not as a mess.
-pub const DEFAULT_THETA_MAX: f32 = 20.0 * std::f32::consts::PI / 180.0;
+pub const DEFAULT_THETA_MAX: f32 = crate::settings::THETA_MAX.default_f32();
 /// `theta_max` must stay below this (45 degrees, the paper's bound), exclusive.
 pub const THETA_MAX_LIMIT: f32 = FRAC_PI_4;
 /// Largest sampling coefficient.

@@ -27,8 +27,6 @@ pub mod fractal_noise;
 pub mod press;
 pub mod slices;
 
-use std::f32::consts::FRAC_PI_6;
-
 pub use field::{plush, PileBuffers, PileField, PileStats, PileView, Plush};
 pub use fractal_noise::{fractal_noise, NoiseField, NoiseParams};
 pub use press::PressMap;
@@ -42,7 +40,10 @@ use crate::pattern::ColorPattern;
 /// Plush gauge used when neither counts nor a gauge are given: 48 wales and 64 courses per
 /// 10 cm. Warp-knit plush is much finer than hand knitting (the paper's sample: 384 courses x
 /// 240 wales).
-pub const DEFAULT_PLUSH_GAUGE: (f32, f32) = (48.0, 64.0);
+pub const DEFAULT_PLUSH_GAUGE: (f32, f32) = (
+    crate::settings::PLUSH_GAUGE_WALES.default_f32(),
+    crate::settings::PLUSH_GAUGE_COURSES.default_f32(),
+);
 /// Default pile length: 2.5 stitch widths.
 pub const DEFAULT_LENGTH_PER_STITCH_WIDTH: f32 = 2.5;
 /// Default pile radius: 0.6 of the spacing between neighbouring piles (the smaller of the
@@ -50,18 +51,21 @@ pub const DEFAULT_LENGTH_PER_STITCH_WIDTH: f32 = 2.5;
 /// from above sees no fabric between them.
 pub const DEFAULT_RADIUS_PER_PILE_SPACING: f32 = 0.6;
 /// Default slices per pile.
-pub const DEFAULT_SLICES: usize = 8;
+pub const DEFAULT_SLICES: usize = crate::settings::SLICES.default_usize();
 /// Most slices per pile.
-pub const MAX_SLICES: usize = 64;
+pub const MAX_SLICES: usize = crate::settings::SLICES.max as usize;
 /// Most piles per stitch.
-pub const MAX_PILES_PER_STITCH: usize = 64;
+pub const MAX_PILES_PER_STITCH: usize = crate::settings::PILES_PER_STITCH.max as usize;
 /// Most stitches along one direction.
 pub const MAX_STITCHES_PER_DIRECTION: usize = crate::gauge::MAX_STITCHES_PER_DIRECTION;
 /// Default nominal lean: 30 degrees from the normal, towards -v (the pile brushed down the
 /// wale, as plush is finished).
-pub const DEFAULT_LEAN: (f32, f32) = (FRAC_PI_6, -std::f32::consts::FRAC_PI_2);
+pub const DEFAULT_LEAN: (f32, f32) = (
+    crate::settings::LEAN_ANGLE.default_f32(),
+    crate::settings::LEAN_DIRECTION.default_f32(),
+);
 /// Default press strength: a full press (weight 1) bends the pile 90% of the way flat.
-pub const DEFAULT_PRESS_STRENGTH: f32 = 0.9;
+pub const DEFAULT_PRESS_STRENGTH: f32 = crate::settings::PRESS_STRENGTH.default_f32();
 /// Default pile colour (linear RGB): a deep red velvet.
 pub const DEFAULT_PILE_COLOR: [f32; 3] = [0.45, 0.06, 0.08];
 
@@ -187,7 +191,7 @@ impl Default for PileParams {
             courses: None,
             wales: None,
             gauge: None,
-            piles_per_stitch: 1,
+            piles_per_stitch: crate::settings::PILES_PER_STITCH.default_usize(),
             pile_length: None,
             pile_radius: None,
             slices: DEFAULT_SLICES,

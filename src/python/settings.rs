@@ -4,7 +4,10 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::settings::{Kind, Setting, KNIT_SETTINGS};
+use crate::error::KnitError;
+use crate::settings::{Kind, Setting, KNIT_SETTINGS, PLUSH_SETTINGS};
+
+use super::errors::to_py;
 
 /// A number of the table as the setting's Python type; `None` for an unbounded end.
 fn value<'py>(py: Python<'py>, kind: Kind, v: f64) -> PyResult<Bound<'py, PyAny>> {
@@ -40,15 +43,25 @@ fn setting_dict<'py>(py: Python<'py>, s: &Setting) -> PyResult<Bound<'py, PyDict
     Ok(d)
 }
 
-/// Every knit setting, in display order: a dict each with `name`, `core_keyword` (the
-/// keyword of `Knit`, or None where the setting is part of a tuple keyword, `part_of`),
-/// `property` (the
-/// Blender property), `label`, `type` ("int", "float", "bool"), `default` (the core's; None
-/// where the core works it out), `addon_default` and `addon_why`, `min` and `max` (None:
-/// unbounded), `unit` and `doc`.
+/// Every setting of a knit (`kind="knit"`) or a plush (`kind="plush"`), in display order:
+/// a dict each with `name`, `core_keyword` (the keyword of `Knit` or `plush`, or None where
+/// the setting is part of a tuple keyword, `part_of`), `property` (the Blender property),
+/// `label`, `type` ("int", "float", "bool"), `default` (the core's; None where the core works
+/// it out), `addon_default` and `addon_why`, `min` and `max` (None: unbounded), `unit` and
+/// `doc`.
 #[pyfunction]
-fn settings(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
-    KNIT_SETTINGS.iter().map(|s| setting_dict(py, s)).collect()
+#[pyo3(signature = (kind="knit"))]
+fn settings<'py>(py: Python<'py>, kind: &str) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    let table = match kind {
+        "knit" => KNIT_SETTINGS,
+        "plush" => PLUSH_SETTINGS,
+        _ => {
+            return Err(to_py(KnitError::Parameter(format!(
+                "settings are of a \"knit\" or a \"plush\", not {kind:?}"
+            ))))
+        }
+    };
+    table.iter().map(|s| setting_dict(py, s)).collect()
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

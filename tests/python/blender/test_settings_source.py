@@ -16,6 +16,10 @@ FLOAT_MAX = float(np.finfo(np.float32).max)
 def _rna(owner: str) -> bpy.types.bpy_prop_collection:
     if owner == "stored":
         return bpy.types.Object.bl_rna.properties["knitwear"].fixed_type.properties
+    if owner == "plush stored":
+        return bpy.types.Object.bl_rna.properties["knitwear_plush"].fixed_type.properties
+    if owner == "plush operator":
+        return bpy.ops.object.knitwear_plush.get_rna_type().properties
     return bpy.ops.object.knitwear_knit.get_rna_type().properties
 
 
@@ -25,11 +29,11 @@ def _as_stored(value: object, kind: str) -> object:
     return value
 
 
-@pytest.mark.parametrize("owner", ["stored", "operator"])
+@pytest.mark.parametrize("owner", ["stored", "operator", "plush stored", "plush operator"])
 def test_every_knit_setting_is_the_cores(core: ModuleType, owner: str) -> None:
     props = _rna(owner)
-    table = core.settings()
-    assert len(table) >= 19
+    table = core.settings("plush" if owner.startswith("plush") else "knit")
+    assert len(table) >= 13
     for s in table:
         prop = props[s["property"]]
         assert prop.name == s["label"], s["name"]

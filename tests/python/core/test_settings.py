@@ -16,6 +16,8 @@ STUB = Path(__file__).resolve().parents[3] / "python" / "knitwear" / "_core.pyi"
 
 SETTINGS = knitwear.settings()
 KEYWORDED = [s for s in SETTINGS if s["core_keyword"] is not None]
+PLUSH = knitwear.settings("plush")
+PLUSH_KEYWORDED = [s for s in PLUSH if s["core_keyword"] is not None]
 
 
 def _stub_defaults(owner: str, function: str) -> dict[str, Any]:
@@ -35,6 +37,19 @@ def _stub_defaults(owner: str, function: str) -> dict[str, Any]:
 
 def _same(a: Any, b: Any) -> bool:
     return type(a) is type(b) and a == b
+
+
+@pytest.mark.parametrize("table", [SETTINGS, PLUSH], ids=["knit", "plush"])
+def test_each_table_is_whole(table: list[dict[str, Any]]) -> None:
+    names = [s["property"] for s in table]
+    assert len(names) == len(set(names))
+    for s in table:
+        assert s["label"] and s["doc"], s["name"]
+        assert s["type"] in {"int", "float", "bool"}
+        if s["addon_default"] != s["default"]:
+            assert s["addon_why"], f"{s['name']}: the add-on's own default says why"
+    with pytest.raises(knitwear.ParameterError, match="knit"):
+        knitwear.settings("sweater")
 
 
 def test_the_table_is_whole() -> None:
@@ -75,6 +90,36 @@ def test_the_stub_defaults_as_the_table_says(owner: str, function: str) -> None:
             assert _same(got, s["default"]), f"{s['core_keyword']}: {got!r} != {s['default']!r}"
             checked += 1
     assert checked >= 9
+
+
+def test_the_plush_signature_and_stub_default_as_the_table_says() -> None:
+    """`plush` spells some defaults and leaves the rest to the core (None); either way it is
+    the table's default."""
+    params = inspect.signature(knitwear.plush).parameters
+    stub = _stub_defaults("", "plush")
+    for s in PLUSH_KEYWORDED:
+        for where, got in (("signature", params[s["core_keyword"]].default), ("stub", None)):
+            if where == "stub":
+                got = stub.get(s["core_keyword"])
+            assert got is None or _same(got, s["default"]), f"{where} {s['name']}: {got!r}"
+    assert params["slices"].default == 8 and params["piles_per_stitch"].default == 1
+
+
+@pytest.mark.parametrize(
+    "setting", [s for s in PLUSH_KEYWORDED if s["name"] not in {"seed"}], ids=lambda s: s["name"]
+)
+def test_the_plush_core_refuses_just_outside_the_declared_range(setting: dict[str, Any]) -> None:
+    step = 1 if setting["type"] == "int" else 1e-3
+    outside = [setting["min"] - step if setting["min"] != 0 else -step]
+    if setting["max"] is not None:
+        outside.append(setting["max"] + step)
+    for value in outside:
+        value = int(value) if setting["type"] == "int" else float(value)
+        kwargs = {setting["core_keyword"]: value}
+        if setting["name"] not in {"courses", "wales"}:
+            kwargs |= {"courses": 2, "wales": 2}
+        with pytest.raises((knitwear.ParameterError, OverflowError)):
+            knitwear.plush(_sheet(), **kwargs)
 
 
 def _sheet() -> knitwear.GridSurface:
@@ -131,5 +176,5 @@ def test_the_readmes_settings_table_is_current() -> None:
     spec.loader.exec_module(table)
     readme = table.README.read_text()
     assert table.updated(readme) == readme, "run scripts/settings_table.py"
-    for s in SETTINGS:
+    for s in SETTINGS + PLUSH:
         assert s["doc"] in readme, s["name"]
