@@ -78,7 +78,7 @@ mod tests {
                 assert!((over - 1.0).abs() < 1e-5, "{p} plies: {over}");
                 let groove = ply_radius(p, (k as f32 + 0.5) * sector + 0.7, 0.7);
                 assert!(
-                    groove < 0.99 && groove >= 1.0 - GROOVE_DEPTH,
+                    (1.0 - GROOVE_DEPTH..0.99).contains(&groove),
                     "{p}: {groove}"
                 );
             }
