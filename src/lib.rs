@@ -19,7 +19,7 @@
 //! | measure | [`metrics`] | clearance between yarns, optical cover |
 //! | lattice | [`lattice`] | tile corners in (u,v), one tile per stitch |
 //! | stitch size | [`tight_stitches`] | the tighter stitches' size the loop shapes are tuned for |
-//! | skeleton | [`skeleton`] | key points, normal offsets, cardinal-spline yarn centrelines |
+//! | skeleton | [`skeleton`] | key points, normal offsets, cardinal-spline yarn centrelines; entered through [`skeleton::YarnSkeleton`] |
 //! | geometry | [`geometry`] | fluffy triangle bundles swept along the centrelines |
 //! | pile | [`pile`] | warp-knit plush: fractal-noise pile directions, view-dependent slices |
 //! | detail | [`detail`] | camera-driven level of detail and culling: what each stitch needs |

@@ -16,7 +16,6 @@ use crate::geometry::{
 };
 use crate::output_buffer;
 use crate::parallel::{run_in_pool, split_lengths};
-use crate::skeleton::sample_piece;
 use crate::surface::Surface;
 
 /// A whole build and the centrelines it was swept along (cloning a knit does not clone it).
@@ -213,19 +212,7 @@ impl PreparedKnit {
                 .zip(pts)
                 .zip(nrm)
                 .zip(own)
-                .map(|(((pc, a), b), o)| {
-                    sample_piece(
-                        surface,
-                        &self.lattice,
-                        &self.pattern,
-                        &self.offsets,
-                        &self.sampling,
-                        pc,
-                        a,
-                        b,
-                        o,
-                    )
-                })
+                .map(|(((pc, a), b), o)| self.skeleton.sample(surface, &self.pattern, pc, a, b, o))
                 .sum();
         }
         c
@@ -240,7 +227,7 @@ impl PreparedKnit {
         let points = &cl.points[base..base + n];
         let normals = &cl.normals[base..base + n];
         let owner = &cl.owner[base..base + n];
-        let wales = self.lattice.wales;
+        let wales = self.skeleton.lattice().wales;
         // A float of stranded colourwork is its own colour, not the stitches' it passes.
         let float = pc.float_color.and_then(|i| {
             let palette = self.params.colors.as_ref()?.palette();

@@ -27,9 +27,8 @@ use crate::budget::OutputSize;
 use crate::detail::{Level, Span};
 use crate::error::Result;
 use crate::geometry::{BundleCounts, BundleSettings, MeshSubset, VertexCorners};
-use crate::lattice::Lattice;
 use crate::pattern::StitchPattern;
-use crate::skeleton::{NormalOffsets, SplineSampling, YarnPiece};
+use crate::skeleton::{YarnPiece, YarnSkeleton};
 use crate::surface::{Surface, UvRect};
 
 /// Knits `pattern` over `surface`: [`PreparedKnit::new`] then [`PreparedKnit::build`].
@@ -56,10 +55,9 @@ pub fn knit(surface: &dyn Surface, pattern: &StitchPattern, p: &KnitParams) -> R
 pub struct PreparedKnit {
     params: KnitParams,
     pattern: StitchPattern,
-    lattice: Lattice,
+    /// The skeleton: lattice, loop shapes and sampling (its one front door).
+    skeleton: YarnSkeleton,
     pieces: Vec<YarnPiece>,
-    offsets: NormalOffsets,
-    sampling: SplineSampling,
     /// Centreline samples per piece (full density).
     samples: Vec<usize>,
     /// First sample of each piece in the concatenated centrelines.

@@ -12,9 +12,7 @@ use crate::geometry::{bundle_counts, BundleCounts, BundleSettings};
 use crate::lattice::{Lattice, ROW_OVERHANG};
 use crate::parallel::run_in_pool;
 use crate::pattern::{ColorPattern, StitchPattern};
-use crate::skeleton::{
-    built_stitches, sample_piece_uv, tuning, yarn_pieces, NormalOffsets, SplineSampling, YarnPiece,
-};
+use crate::skeleton::{SplineSampling, YarnPiece, YarnSkeleton};
 use crate::surface::{Surface, UvRect};
 
 /// Stitch counts from explicit counts or the gauge and the surface's extent. Along a cyclic
@@ -54,49 +52,6 @@ pub(super) fn stitch_counts(
         courses
     };
     Ok((courses, rounded, gauge_wales as f32 / rounded.max(1) as f32))
-}
-
-/// The most samples-per-loop multiple any piece of `pattern` can get.
-pub(super) fn densest(pattern: &StitchPattern) -> usize {
-    let lean = (0..pattern.height())
-        .flat_map(|r| (0..pattern.width()).map(move |w| (r, w)))
-        .map(|(r, w)| pattern.stitch(r, w).land_offset.unsigned_abs() as usize)
-        .max()
-        .unwrap_or(0);
-    crate::skeleton::sampling_density::density(lean)
-}
-
-/// The pieces of yarn of every course over the stitches `built`, each sampled as densely as
-/// its loops need ([`crate::skeleton::sampling_density`]).
-pub(super) fn course_pieces(
-    lattice: &Lattice,
-    built: &[bool],
-    pattern: &StitchPattern,
-) -> Vec<YarnPiece> {
-    let mut pieces = yarn_pieces(lattice, built);
-    crate::skeleton::sampling_density(&mut pieces, lattice, pattern);
-    pieces
-}
-
-/// `pieces` and the extra pieces of yarn the pattern asks for: the balls of its bobbles
-/// ([`crate::skeleton::bobbles`]) and, for a palette colour chart (not an image), the floats
-/// of stranded colourwork ([`crate::skeleton::floats`]).
-pub(super) fn with_extras(
-    mut pieces: Vec<YarnPiece>,
-    lattice: &Lattice,
-    built: &[bool],
-    pattern: &StitchPattern,
-    p: &KnitParams,
-) -> Vec<YarnPiece> {
-    pieces.extend(crate::skeleton::bobbles::bobble_pieces(
-        lattice, built, pattern,
-    ));
-    if let (Some(colors), None) = (&p.colors, &p.color_image) {
-        pieces.extend(crate::skeleton::floats::float_pieces(
-            lattice, built, colors,
-        ));
-    }
-    pieces
 }
 
 /// See [`KnitStats::topology_key`]: a SplitMix64 chain over the structure that fixes the
@@ -142,15 +97,13 @@ pub(super) fn whole_piece_span(i: usize, pc: &YarnPiece, samples_per_loop: usize
 #[allow(clippy::too_many_arguments)]
 pub(super) fn level_runs(
     surface: &dyn Surface,
-    lattice: &Lattice,
+    skeleton: &YarnSkeleton,
     pattern: &StitchPattern,
-    offsets: &NormalOffsets,
-    sampling: &SplineSampling,
     pc: &YarnPiece,
     levels: &[Level],
     samples_per_loop: usize,
 ) -> Vec<(usize, Level)> {
-    let wales = lattice.wales;
+    let wales = skeleton.lattice().wales;
     let level_of = |j: usize| levels[pc.course * wales + (pc.first_wale + j) % wales];
     let first = level_of(0);
     if (1..pc.stitches).all(|j| level_of(j) == first) {
@@ -160,9 +113,7 @@ pub(super) fn level_runs(
     let n = pc.sample_count(samples_per_loop);
     let mut uvl = vec![Vec3::ZERO; n];
     let mut owner = vec![0u32; n];
-    sample_piece_uv(
-        surface, lattice, pattern, offsets, sampling, pc, &mut uvl, &mut owner,
-    );
+    skeleton.sample_uv(surface, pattern, pc, samples_per_loop, &mut uvl, &mut owner);
     let level_at = |k: usize| level_of(owner[k] as usize);
     let mut runs = Vec::new();
     for k in 0..n {
@@ -196,7 +147,11 @@ impl PreparedKnit {
         let s = p.samples_per_loop;
         let stitches = courses as u64 * wales as u64;
         budget::check(
-            &OutputSize::upper_bound(stitches, (s * densest(pattern)) as u64, m as u64),
+            &OutputSize::upper_bound(
+                stitches,
+                (s * YarnSkeleton::densest_sampling(pattern)) as u64,
+                m as u64,
+            ),
             p.budget_bytes,
             stitches,
         )?;
@@ -235,53 +190,20 @@ impl PreparedKnit {
                 2.0 * radius
             )));
         }
-        let (offsets, flat_clearance, per_lean) = tuning::tuned_offsets(
+        let skeleton = YarnSkeleton::new(
+            base,
             pattern,
-            stitch_width,
-            stitch_height,
+            (stitch_width, stitch_height),
             2.0 * radius,
-            p.tension,
+            SplineSampling {
+                samples_per_loop: s,
+                tension: p.tension,
+            },
         );
-
-        // Wales whose edge cuts a crossing or a decrease are knitted straight, with a relief
-        // made for the pattern straightened.
-        let straight_wales: Vec<bool> = if pattern.has_crossings() {
-            (0..base.wales)
-                .map(|w| !crate::skeleton::stitch_shape::wale_knits_whole(&base, pattern, w))
-                .collect()
-        } else {
-            Vec::new()
-        };
-        let offsets = if !straight_wales.contains(&true) {
-            offsets
-        } else if base.cyclic_u {
-            // Round a seam (explicit counts that are not whole repeats): no edge corrections,
-            // which a flat strip cannot make across the seam.
-            let straight = tuning::straight_offsets(
-                pattern,
-                stitch_width,
-                stitch_height,
-                2.0 * radius,
-                p.tension,
-            );
-            offsets.with_straight(straight, straight_wales)
-        } else {
-            tuning::offsets_with_straight_wales(
-                pattern,
-                stitch_width,
-                stitch_height,
-                2.0 * radius,
-                p.tension,
-                straight_wales,
-            )
-        };
-        let (width_d, height_d) = tuning::proportions(stitch_width, stitch_height, 2.0 * radius);
-        let lattice =
-            crate::skeleton::leaning_rows::shaped(base, pattern, width_d, height_d, per_lean);
-        let sampling = SplineSampling {
-            samples_per_loop: s,
-            tension: p.tension,
-        };
+        let flat_clearance = skeleton.flat_clearance();
+        let lattice = skeleton.lattice();
+        // Floats of stranded colourwork follow a palette chart, not an image.
+        let float_colors = p.colors.as_ref().filter(|_| p.color_image.is_none());
         let bundle = BundleSettings {
             radius,
             ring_segments: m,
@@ -293,19 +215,9 @@ impl PreparedKnit {
         };
         // Full-detail pieces first: their triangles are the figure detail is measured against.
         let (full_pieces, built, built_count) = run_in_pool(p.threads, || {
-            let built = built_stitches(surface, &lattice);
+            let built = skeleton.built_stitches(surface);
             let count = built.iter().filter(|b| **b).count();
-            (
-                with_extras(
-                    course_pieces(&lattice, &built, pattern),
-                    &lattice,
-                    &built,
-                    pattern,
-                    p,
-                ),
-                built,
-                count,
-            )
+            (skeleton.pieces(&built, pattern, float_colors), built, count)
         })?;
         let triangles_full_detail: usize = full_pieces
             .iter()
@@ -329,23 +241,15 @@ impl PreparedKnit {
                 // The yarn stands off the surface by its offsets (at most about a diameter)
                 // plus its radius and fluff.
                 let reach = radius * (3.0 + p.fluffiness);
-                let levels = stitch_levels(surface, &lattice, &built, d, reach)?;
+                let levels = stitch_levels(surface, lattice, &built, d, reach)?;
                 let kept: Vec<bool> = levels.iter().map(|l| l.is_built()).collect();
-                let pieces = with_extras(
-                    course_pieces(&lattice, &kept, pattern),
-                    &lattice,
-                    &kept,
-                    pattern,
-                    p,
-                );
+                let pieces = skeleton.pieces(&kept, pattern, float_colors);
                 let spl = |level: Level| d.level_settings(level, full).samples_per_loop;
                 let spans: Vec<Span> = pieces
                     .par_iter()
                     .enumerate()
                     .map(|(i, pc)| {
-                        let runs = level_runs(
-                            surface, &lattice, pattern, &offsets, &sampling, pc, &levels, s,
-                        );
+                        let runs = level_runs(surface, &skeleton, pattern, pc, &levels, s);
                         piece_spans(i, pc.sample_count(s), pc.closed, &runs, s, spl)
                     })
                     .flatten()
@@ -423,10 +327,8 @@ impl PreparedKnit {
         let mut prepared = Self {
             params: p.clone(),
             pattern: pattern.clone(),
-            lattice,
+            skeleton,
             pieces,
-            offsets,
-            sampling,
             samples,
             piece_start,
             spans,
@@ -470,7 +372,7 @@ impl PreparedKnit {
     /// variation: from the colour image, else the colour pattern, else the default yarn.
     pub fn stitch_color(&self, course: usize, wale: usize) -> [f32; 3] {
         match (&self.params.color_image, &self.params.colors) {
-            (Some(img), _) => img.sample(self.lattice.tile_center(course, wale)),
+            (Some(img), _) => img.sample(self.skeleton.lattice().tile_center(course, wale)),
             (None, Some(c)) => c.color(course, wale),
             (None, None) => DEFAULT_YARN_COLOR,
         }
@@ -500,7 +402,7 @@ impl PreparedKnit {
 
     /// The stitch lattice (perturbed by `kappa`), in the surface's (u,v) domain.
     pub fn lattice(&self) -> &Lattice {
-        &self.lattice
+        self.skeleton.lattice()
     }
 
     /// The (u,v) domain the knit was prepared for.

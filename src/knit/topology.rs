@@ -6,7 +6,6 @@ use rayon::prelude::*;
 
 use super::*;
 use crate::error::Result;
-use crate::skeleton::{sample_piece_uv, SplineSampling};
 use crate::surface::Surface;
 
 impl PreparedKnit {
@@ -15,7 +14,7 @@ impl PreparedKnit {
     /// surface. Runs in the caller's rayon pool.
     pub fn uv_centrelines(&self, surface: &dyn Surface) -> Result<Vec<UvYarn>> {
         self.check_layout(surface)?;
-        let wales = self.lattice.wales;
+        let wales = self.skeleton.lattice().wales;
         Ok(self
             .pieces
             .par_iter()
@@ -23,16 +22,9 @@ impl PreparedKnit {
             .map(|(pc, &n)| {
                 let mut points = vec![Vec3::ZERO; n];
                 let mut owner = vec![0u32; n];
-                sample_piece_uv(
-                    surface,
-                    &self.lattice,
-                    &self.pattern,
-                    &self.offsets,
-                    &self.sampling,
-                    pc,
-                    &mut points,
-                    &mut owner,
-                );
+                let spl = self.skeleton.sampling().samples_per_loop;
+                self.skeleton
+                    .sample_uv(surface, &self.pattern, pc, spl, &mut points, &mut owner);
                 let stitches = owner
                     .iter()
                     .map(|&o| (pc.course, (pc.first_wale + o as usize) % wales))
@@ -41,7 +33,7 @@ impl PreparedKnit {
                     points,
                     stitches,
                     closed: pc.closed,
-                    period_u: self.lattice.tile.x * wales as f32,
+                    period_u: self.skeleton.lattice().tile.x * wales as f32,
                 }
             })
             .collect())
@@ -58,36 +50,31 @@ impl PreparedKnit {
         surface: &dyn Surface,
     ) -> Result<crate::skeleton::crossings::CrossingOrder> {
         self.check_layout(surface)?;
-        let sampling = SplineSampling {
-            samples_per_loop: self.sampling.samples_per_loop.max(TOPOLOGY_SAMPLES),
-            ..self.sampling
-        };
+        let samples_per_loop = self
+            .skeleton
+            .sampling()
+            .samples_per_loop
+            .max(TOPOLOGY_SAMPLES);
         let lines: Vec<Vec<Vec3>> = self
             .pieces
             .par_iter()
             .map(|pc| {
-                let n = pc.sample_count(sampling.samples_per_loop);
+                let n = pc.sample_count(samples_per_loop);
                 let mut points = vec![Vec3::ZERO; n];
                 let mut owner = vec![0u32; n];
-                sample_piece_uv(
+                self.skeleton.sample_uv(
                     surface,
-                    &self.lattice,
                     &self.pattern,
-                    &self.offsets,
-                    &sampling,
                     pc,
+                    samples_per_loop,
                     &mut points,
                     &mut owner,
                 );
                 points
             })
             .collect();
-        Ok(crate::skeleton::crossings::crossing_order(
-            &self.lattice,
-            &self.pattern,
-            &self.pieces,
-            &lines,
-            sampling.samples_per_loop,
-        ))
+        Ok(self
+            .skeleton
+            .crossing_order(&self.pattern, &self.pieces, &lines, samples_per_loop))
     }
 }

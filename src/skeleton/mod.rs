@@ -21,11 +21,13 @@ pub mod sampling_density;
 mod spline;
 pub mod stitch_shape;
 pub mod tuning;
+mod yarn_skeleton;
 
 pub use key_points::{key_points, LoopShape, KEY_POINTS};
 pub use offsets::{NormalOffsets, Shape, StraightWales, DEFAULT_SHAPE, SHAPE_COEFFICIENTS};
 pub use spline::CardinalSpline;
 pub use stitch_shape::stitch_key_points;
+pub use yarn_skeleton::YarnSkeleton;
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
