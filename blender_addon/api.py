@@ -31,7 +31,7 @@ from .properties import KNIT_SETTINGS
 #: Called with the fraction done (0..1) between the steps of a knit.
 Progress = core_inputs.Progress
 
-#: Below this many diameters of clearance on a flat patch loops overlap visibly (DESIGN.md
+#: Below this many diameters of clearance on a flat patch loops overlap visibly (docs/design.md
 #: section 7): the user is warned. With every course interlocked the tuned loops of the
 #: knit/purl presets keep 0.6-0.97 at the default yarn, but cables and lace still fall
 #: below it (their loop shapes are the open work of "Knitted, not stacked"), and the

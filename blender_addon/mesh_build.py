@@ -3,7 +3,7 @@
 The fast route writes the whole topology as attributes, with the edges the core already
 computed (`KnitResult.edges`, `KnitResult.corner_edges`), so that `Mesh.update()` has no edges
 to hash: about 0.03-0.06 s per million triangles against 0.4-0.8 s for the classic
-`vertices/loops/polygons.foreach_set` route (see BLENDER_NOTES.md). The attribute names it
+`vertices/loops/polygons.foreach_set` route (see docs/design.md section 9.1). The attribute names it
 uses (".corner_vert", ".edge_verts", ".corner_edge") are internal to Blender, so the classic
 route remains as a fallback when they are missing or refuse the data.
 

@@ -1,5 +1,5 @@
 """Knitwear texture: the knit drawn in the source's (u,v) as an image, worn by the source
-itself as a material (seed 000, section 3). No yarn geometry, so it costs one image: the
+itself as a material ([Zhong 2001], section 3). No yarn geometry, so it costs one image: the
 stand-in for knitwear seen from afar.
 
 The source is sampled and the settings converted exactly as for a knit (`core_inputs`),

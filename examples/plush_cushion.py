@@ -1,4 +1,4 @@
-"""The paper's palm print (seed 002, figure 7): a velvet cushion pressed by a hand.
+"""The paper's palm print ([Zhang plush], figure 7): a velvet cushion pressed by a hand.
 
 Installs the built extension into a throw-away Blender user folder, builds a cushion top (a
 domed NURBS patch), draws a press map of a palm (an ellipse and five finger capsules) with

@@ -1,7 +1,7 @@
 """Charts of where knitting on a surface breaks (issue 4): sweeps the four parameters that break
-knit-on-surface methods and plots the yarn clearance (DESIGN.md section 7) against each, with the
-places where the core's safeguards engage (offsets clamped to the curvature, stitches skipped,
-requests refused).
+knit-on-surface methods and plots the yarn clearance (docs/design.md section 7) against each,
+with the places where the core's safeguards engage (offsets clamped to the curvature, stitches
+skipped, requests refused).
 
     PYTHONPATH=build/site .venv/bin/python scripts/chart_breakage.py [--out docs/charts]
 

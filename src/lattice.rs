@@ -1,5 +1,5 @@
 //! The stitch lattice: tile corners in the surface's (u,v) domain, one tile per stitch
-//! (seed 000, section 2.3). Courses (rows) run along u and are stacked along v; wales
+//! ([Zhong 2001], section 2.3). Courses (rows) run along u and are stacked along v; wales
 //! (columns) run along v.
 //!
 //! Node `(r, c)` is the bottom-left corner of the tile of stitch (course `r`, wale `c`).
@@ -107,7 +107,7 @@ impl Lattice {
     }
 
     /// The regular lattice with every node moved by the recursive random perturbation of
-    /// strength `kappa` (seed 000, section 2.4): node `(r, c)` is
+    /// strength `kappa` ([Zhong 2001], section 2.4): node `(r, c)` is
     /// `origin + tile * ((c, r) + D(r, c))` with `D` the [`Perturbation`] field in tile units.
     ///
     /// - `kappa = 0` gives exactly [`Lattice::regular`].

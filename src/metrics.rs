@@ -1,4 +1,4 @@
-//! Accuracy measures (DESIGN.md section 7). Clearance: how close the centrelines of yarn
+//! Accuracy measures (docs/design.md section 7). Clearance: how close the centrelines of yarn
 //! segments that are not neighbours along the yarn come to each other, in yarn diameters.
 //! Goal: at least 1.0 everywhere (no interpenetration), reported as the minimum and the 1st
 //! percentile.
@@ -50,7 +50,7 @@ pub struct Clearance {
     pub segments: usize,
 }
 
-/// Clearance of `yarns` (DESIGN.md section 7): the summary of [`segment_clearances`].
+/// Clearance of `yarns` (docs/design.md section 7): the summary of [`segment_clearances`].
 ///
 /// - `diameter`: yarn diameter in scene units; distances are reported in diameters.
 /// - `neighbour_arclength`: in diameters. Two segments of the same yarn are neighbours, and
@@ -107,7 +107,7 @@ pub fn clearance(
     }
 }
 
-/// The clearance every knit reports, `(min, p01)` in yarn diameters (DESIGN.md section 7):
+/// The clearance every knit reports, `(min, p01)` in yarn diameters (docs/design.md section 7):
 /// [`clearance`] of the yarn pieces `pieces` (first point, end point, closed) of `points`
 /// (scene units) with yarn of `radius`, at the default neighbour exclusion and a cap of 3
 /// diameters. Ranges past the end are cut to it.

@@ -1,4 +1,4 @@
-//! The knitwear texture (seed 000, section 3, "Knitwear Texture"): the knit drawn in the
+//! The knitwear texture ([Zhong 2001], section 3, "Knitwear Texture"): the knit drawn in the
 //! surface's (u,v) domain as an image, for a material on the source surface. No silhouette,
 //! self-occlusion or shadows, but the same lattice (with its `kappa` perturbation), the same
 //! yarn centrelines and the same stitch colours as the 3D knit, at the cost of one image.

@@ -1,5 +1,5 @@
-//! The perturbed stitch lattice (seed 000 section 2.4, DESIGN.md section 4): kappa 0 is the
-//! regular lattice, tiles never fold, the field is local, periodic, deterministic and
+//! The perturbed stitch lattice ([Zhong 2001] section 2.4, docs/design.md section 4): kappa 0
+//! is the regular lattice, tiles never fold, the field is local, periodic, deterministic and
 //! independent of the thread count.
 
 use glam::Vec2;

@@ -1,6 +1,6 @@
-//! Warp-knit plush (DESIGN.md section 6): noise statistics, the slice criterion for every pile,
-//! closed-form counts, determinism across thread counts, cheap camera updates equal to full
-//! builds, and budget errors before allocation. Figures are printed (`--nocapture`), never
+//! Warp-knit plush (docs/design.md section 6): noise statistics, the slice criterion for every
+//! pile, closed-form counts, determinism across thread counts, cheap camera updates equal to
+//! full builds, and budget errors before allocation. Figures are printed (`--nocapture`), never
 //! asserted on time.
 
 use std::collections::HashSet;

@@ -147,7 +147,7 @@ fn measured_at(surface: &dyn Surface, pattern: &StitchPattern, kappa: f32) -> (f
 }
 
 /// The clearance every preset keeps, in yarn diameters, with every course interlocked
-/// (DESIGN.md section 3). The earlier floor of 0.95 was reached by flipping sinkers and leg
+/// (docs/design.md section 3). The earlier floor of 0.95 was reached by flipping sinkers and leg
 /// tops to the wrong side of the fabric (courses stacked like roof shingles); inside the
 /// interlock the tuned key-point offsets and loop shapes reach less, and this floor records
 /// what they keep so that it cannot fall further. Raising it to 0.95 is the open work of
@@ -162,7 +162,7 @@ const CLEARANCE_FLOOR: f32 = 0.05;
 const PLAIN_CLEARANCE_FLOOR: f32 = 0.3;
 
 /// Every preset on a flat sheet, a cylinder and a sphere at default settings: every course
-/// interlocks with the one below at every crossing (DESIGN.md section 3), the crossings each
+/// interlocks with the one below at every crossing (docs/design.md section 3), the crossings each
 /// stitch's own rule decides are the right way round, and the independent check of section 7
 /// holds: in nearly every stitch-wide bucket of a course's crossings with the course below,
 /// the upper course is in front at about half of them. Clearance keeps its floor.
@@ -220,7 +220,7 @@ fn every_preset_crosses_as_its_pattern_says() {
                 ));
             }
             // A stacked course has the upper course in front at all of a bucket's crossings.
-            // DESIGN.md section 7 makes the claim for knit/purl mixes: a yarn-over holds no
+            // docs/design.md section 7 makes the claim for knit/purl mixes: a yarn-over holds no
             // loop below it, and the loops gathered beside it pass its column on their
             // pullers' face side only, so lace keeps it in fewer buckets (lace diamond
             // measured 0.88 on all three surfaces).

@@ -1,4 +1,4 @@
-//! Fluffy triangle bundles (seed 000, section 2.5, figure 7).
+//! Fluffy triangle bundles ([Zhong 2001], section 2.5, figure 7).
 //!
 //! A ring of `m` points is swept along the centreline (ring `i` around sample `i`). Between
 //! consecutive rings L1, L2 the paper's bundle has `m + n` triangles (here `n = m`): each edge

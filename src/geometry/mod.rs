@@ -1,4 +1,4 @@
-//! Geometry swept along the yarn centrelines: fluffy triangle bundles (seed 000, section 2.5).
+//! Geometry swept along the yarn centrelines: fluffy triangle bundles ([Zhong 2001], section 2.5).
 
 mod bundle;
 mod frames;

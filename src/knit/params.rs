@@ -59,7 +59,7 @@ pub struct KnitParams {
     pub samples_per_loop: usize,
     /// Cardinal spline tension, 0..1 (0: Catmull-Rom). Default: 0.
     pub tension: f32,
-    /// Irregularity of stitch positions: the recursive perturbation's kappa (seed 000,
+    /// Irregularity of stitch positions: the recursive perturbation's kappa ([Zhong 2001],
     /// section 2.4), 0 (a regular lattice) to [`crate::lattice::KAPPA_MAX`]. Default: 0.
     pub kappa: f32,
     pub seed: u64,

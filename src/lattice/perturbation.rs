@@ -1,4 +1,4 @@
-//! Recursive random perturbation of stitch positions (seed 000, section 2.4; DESIGN.md
+//! Recursive random perturbation of stitch positions ([Zhong 2001], section 2.4; docs/design.md
 //! section 4): the displacement field `D(r, c)` that moves lattice node `(r, c)` to
 //! `origin + tile * ((c, r) + D(r, c))`, measured in tile units.
 //!

@@ -1,4 +1,4 @@
-//! Optical cover (DESIGN.md section 7): the fraction of the fabric hidden by yarn in an
+//! Optical cover (docs/design.md section 7): the fraction of the fabric hidden by yarn in an
 //! orthographic view along the fabric's normal, tubes only (no fluff).
 //!
 //! A tube of radius `r` round a centreline is a union of balls of radius `r`, and the

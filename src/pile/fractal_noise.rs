@@ -1,5 +1,5 @@
-//! Fractal noise of pile directions (seed 002, section 1, figure 3 and formula (1); our reading
-//! is DESIGN.md section 6).
+//! Fractal noise of pile directions ([Zhang plush], section 1, figure 3 and formula (1); our
+//! reading is docs/design.md section 6).
 //!
 //! - **Base noise**: per texel, `theta ~ U(0, theta_max)` (how far the pile strays from its
 //!   nominal direction, `theta_max < 45 deg`) and `phi ~ U(0, 2 pi)` (which way), giving the

@@ -1,5 +1,5 @@
-//! Warp-knitted plush: pile over a surface, drawn as view-dependent slices (seed 002, Zhang,
-//! Jiang, Li and Cong; DESIGN.md section 6).
+//! Warp-knitted plush: pile over a surface, drawn as view-dependent slices ([Zhang plush] by Zhang,
+//! Jiang, Li and Cong; docs/design.md section 6).
 //!
 //! Two steps, so that following a camera is cheap:
 //!

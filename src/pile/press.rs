@@ -1,4 +1,4 @@
-//! The press map: where something pressed the fabric (a palm, seed 002 figure 7), the pile is
+//! The press map: where something pressed the fabric (a palm, [Zhang plush] figure 7), the pile is
 //! bent over towards the fabric plane.
 //!
 //! A press map is a greyscale image of weights in `[0, 1]` over the surface's (u,v): pixel

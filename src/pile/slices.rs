@@ -1,5 +1,5 @@
-//! Pile slices (seed 002, section 2 and formulas (3)/(4); DESIGN.md section 6): each pile is
-//! drawn as `S` textured quads, horizontal or vertical, chosen per pile for the view.
+//! Pile slices ([Zhang plush], section 2 and formulas (3)/(4); docs/design.md section 6): each
+//! pile is drawn as `S` textured quads, horizontal or vertical, chosen per pile for the view.
 //!
 //! **The choice.** `alpha` is the angle between the pile direction `t` and the view ray `L`
 //! from the pile's root to the eye, `r` the pile radius and `l` the *slice spacing* along the

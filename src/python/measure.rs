@@ -39,7 +39,7 @@ pub(crate) fn result_centreline(
     Ok((v, ranges, r.yarn_radius))
 }
 
-/// Clearance of a knit result: `(min, p01)` in yarn diameters (DESIGN.md section 7).
+/// Clearance of a knit result: `(min, p01)` in yarn diameters (docs/design.md section 7).
 #[pyfunction]
 pub(crate) fn measure_clearance(
     py: Python<'_>,
@@ -51,7 +51,7 @@ pub(crate) fn measure_clearance(
     })
 }
 
-/// Optical cover of a knit result (DESIGN.md section 7): the fraction of the rectangle
+/// Optical cover of a knit result (docs/design.md section 7): the fraction of the rectangle
 /// `bounds = (x_min, y_min, x_max, y_max)` (object space) hidden by the yarn's tubes (no
 /// fluff) in an orthographic view along z, sampled on `resolution` x `resolution` pixels.
 #[pyfunction]

@@ -1,4 +1,4 @@
-//! Which yarn is in front where two yarns cross (DESIGN.md sections 3 and 7): the interlock
+//! Which yarn is in front where two yarns cross (docs/design.md sections 3 and 7): the interlock
 //! of every course with the one below, and the order of crossed, twisted, slipped and
 //! stranded yarn, as the stitch pattern says.
 //!
@@ -53,7 +53,7 @@ pub struct CrossingOrder {
     pub interlock_agree: usize,
     /// Crossings no rule decides (within one course, or courses further apart).
     pub undecided: usize,
-    /// The independent check of DESIGN.md section 7: interlock crossings bucketed by lower
+    /// The independent check of docs/design.md section 7: interlock crossings bucketed by lower
     /// course and stitch-wide column; `buckets` of them hold a crossing, and
     /// `buckets_half_front` have the upper course in front at between a quarter and three
     /// quarters of theirs. A stacked course scores 0 here whatever its depths.

@@ -1,4 +1,4 @@
-//! The six key points of a loop in (u,v) (seed 000, section 2.3, figure 4).
+//! The six key points of a loop in (u,v) ([Zhong 2001], section 2.3, figure 4).
 
 use glam::Vec2;
 

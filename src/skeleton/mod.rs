@@ -1,4 +1,4 @@
-//! The knitwear skeleton (seed 000, section 2.3): one continuous yarn centreline per course,
+//! The knitwear skeleton ([Zhong 2001], section 2.3): one continuous yarn centreline per course,
 //! through the six key points of every loop, offset along the surface normal and joined by a
 //! cubic cardinal spline.
 //!

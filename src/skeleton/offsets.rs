@@ -1,4 +1,4 @@
-//! Normal offsets (the lambdas of seed 000, section 2.3): how far each key point stands off
+//! Normal offsets (the lambdas of [Zhong 2001], section 2.3): how far each key point stands off
 //! the surface, along the surface normal, in scene units.
 //!
 //! The paper leaves the signs and magnitudes open ("chosen so that the loop is knitted into the

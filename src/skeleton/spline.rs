@@ -1,4 +1,4 @@
-//! Cubic cardinal splines through key points (seed 000, section 2.3).
+//! Cubic cardinal splines through key points ([Zhong 2001], section 2.3).
 //!
 //! Uniform parameterisation: key point `i` sits at parameter `t = i`. The tangent at key
 //! point `i` is `(1 - tension) (p[i+1] - p[i-1]) / 2`; tension 0 is the Catmull-Rom spline,

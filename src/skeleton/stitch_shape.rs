@@ -1,4 +1,4 @@
-//! The key points of one stitch in (u, v, lambda), for every kind of stitch (DESIGN.md
+//! The key points of one stitch in (u, v, lambda), for every kind of stitch (docs/design.md
 //! section 3, "Advanced stitches").
 //!
 //! A loop's bottom (sinker k0, leg bottoms k1 and k5) sits in its own tile, where it was pulled

@@ -1,5 +1,6 @@
-//! Choosing the normal offsets by optimising clearance (DESIGN.md section 3: "choose lambdas by
-//! optimising the clearance metric, per stitch type and yarn thickness, not by hand").
+//! Choosing the normal offsets by optimising clearance (docs/design.md section 3.3: "choose
+//! lambdas by optimising the clearance metric, per stitch type and yarn thickness, not by
+//! hand").
 //!
 //! The four magnitudes of [`NormalOffsets`] are tuned on a flat patch knitted with the user's
 //! pattern, stitch size and yarn diameter, maximising the minimum clearance (then the 1st
@@ -599,7 +600,7 @@ fn tune_shape(
 }
 
 /// Lower bounds of the coefficients: every key point on the side the interlock puts it
-/// (DESIGN.md section 3), so the search shapes the loops but never flips one to the other
+/// (docs/design.md section 3), so the search shapes the loops but never flips one to the other
 /// side of the fabric (which stacks the courses like roof shingles: the clearance it wins is
 /// not the knit's). The leg bottoms (k1, k5) and the leg tops (k2, k4) pass the head below
 /// and the sinker above on their stitch's side; the head (k3) and the sinker (k0) pass the

@@ -1,5 +1,5 @@
 //! A triangle mesh with a UV map: (u,v) is the UV map, located through a uniform grid index
-//! over the UV triangles (DESIGN.md section 2). A (u,v) outside every UV island has no
+//! over the UV triangles (docs/design.md section 2). A (u,v) outside every UV island has no
 //! surface.
 
 use glam::{DVec3, Vec2, Vec3};
@@ -180,7 +180,7 @@ impl MeshSurface {
         let mut tris = Vec::new();
         let mut corners = Vec::new();
         let (mut lo, mut hi) = (Vec2::MAX, Vec2::MIN);
-        // Extent: UV-area-weighted sums of |ds/du| and |ds/dv| (DESIGN.md section 2: gauge
+        // Extent: UV-area-weighted sums of |ds/du| and |ds/dv| (docs/design.md section 2: gauge
         // is measured on the surface).
         let (mut weight, mut sum_du, mut sum_dv) = (0.0f64, 0.0f64, 0.0f64);
         for t in 0..m {

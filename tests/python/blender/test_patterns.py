@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from blender_scenes import SMALL, nurbs_patch
 
-#: Clearance floors in yarn diameters with every course interlocked (DESIGN.md section 3).
+#: Clearance floors in yarn diameters with every course interlocked (docs/design.md section 3).
 #: The earlier 0.95 for every preset was reached by stacking the courses; inside the
 #: interlock the tuned loops keep less, most of all where loops lean (cables, lace), and
 #: these floors keep it from falling further while "Knitted, not stacked" stays open.
@@ -105,7 +105,7 @@ def test_every_preset_knits_with_its_crossings_the_right_way_round(
     api: ModuleType, core: ModuleType, surface: str
 ) -> None:
     """Every preset knits from the operator on a NURBS surface and on a UV mesh, and at every
-    crossing the pattern decides the yarn in front is the one it says (DESIGN.md section 7)."""
+    crossing the pattern decides the yarn in front is the one it says (docs/design.md section 7)."""
     make = nurbs_patch if surface == "nurbs" else grid_mesh
     for name in core.Pattern.presets():
         source = make()
@@ -141,7 +141,7 @@ def test_fair_isle_band_by_name_gives_floats_behind(api: ModuleType, core: Modul
 def test_every_preset_clears_a_yarn_diameter_at_the_add_ons_defaults(
     api: ModuleType, surface: str
 ) -> None:
-    """Clearance (DESIGN.md section 7) of every preset knitted as a user knits it: the add-on's
+    """Clearance (docs/design.md section 7) of every preset knitted as a user knits it: the add-on's
     defaults (gauge, yarn, irregularity, full detail) on Blender's NURBS patch and on a UV grid,
     both scaled to 12 cm (24-25 stitches: most repeats are cut by the edge). Yarns keep the
     floor of their kind (see `CLEARANCE_FLOOR`)."""

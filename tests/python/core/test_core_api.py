@@ -211,7 +211,7 @@ def test_clearance_is_exposed() -> None:
 
 
 def test_interlock_is_exposed_and_whole() -> None:
-    """Every course interlocks with the one below (DESIGN.md section 3): all the crossings
+    """Every course interlocks with the one below (docs/design.md section 3): all the crossings
     between a course and the loops it is pulled through are the right way round."""
     surface = knitwear.GridSurface(*plane_grid())
     for name in ("stockinette", "rib_1x1", "seed", "cable_c4"):
