@@ -101,7 +101,7 @@ def test_pinned_levels_rebuild_the_same_mesh() -> None:
     [
         ({"detail_px": (4, 8, 2)}, "full >= mid >= texture"),
         ({"mid_quality": (3, 6, True)}, "6..=256 samples"),
-        ({"frustum_margin": float("nan")}, "frustum margin"),
+        ({"frustum_margin": float("nan")}, "frustum_margin"),
         ({"stitch_levels": np.zeros((2, 2), np.uint8)}, "not both"),
     ],
 )
