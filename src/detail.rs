@@ -175,6 +175,16 @@ pub struct LevelSettings {
     pub fluffiness: f32,
 }
 
+/// Most camera views one knit models for: each is rasterised once by the hidden-yarn pass
+/// and projected once per stitch, so an animated camera is sampled to at most this many
+/// frames (the add-on samples its frame range down to fit).
+pub const MAX_VIEWS: usize = 2048;
+
+/// Most samples a side of the hidden-yarn pass's grid (resolution times supersampling):
+/// a 16K render at 4 x 4 samples a pixel (about 17 s on 2 cores); past it, its time grows
+/// with the square into minutes.
+pub const MAX_HIDDEN_SAMPLES: u64 = 65536;
+
 impl DetailParams {
     /// Checks the settings; errors name the setting.
     pub fn validate(&self) -> Result<()> {
@@ -182,6 +192,13 @@ impl DetailParams {
             return Err(KnitError::Parameter(
                 "camera-driven detail needs at least one camera view or pinned levels".into(),
             ));
+        }
+        if self.views.len() > MAX_VIEWS {
+            return Err(KnitError::Parameter(format!(
+                "a camera may have at most {MAX_VIEWS} views, not {}: sample an animated \
+                 camera's frames more sparsely (every view is rasterised once)",
+                self.views.len()
+            )));
         }
         for (i, v) in self.views.iter().enumerate() {
             let finite = v
@@ -193,6 +210,28 @@ impl DetailParams {
             if !finite {
                 return Err(KnitError::Parameter(format!(
                     "camera view {i} has a NaN or infinite matrix or eye"
+                )));
+            }
+            // A projection loses one dimension only at the far plane of an infinite one;
+            // a clip-from-object matrix that cannot be inverted flattens the scene (a camera
+            // or an object scaled to zero), and every stitch would project to nothing.
+            let det = f64::from(v.clip_from_object.determinant());
+            let scale = v
+                .clip_from_object
+                .to_cols_array()
+                .iter()
+                .fold(0.0f64, |m, x| m.max(f64::from(x.abs())));
+            if det.is_nan() || det.abs() <= 1e-12 * scale.powi(4) {
+                return Err(KnitError::Parameter(format!(
+                    "camera view {i}'s matrix is singular (determinant {det:e}): the camera or \
+                     the object is scaled to zero along some axis"
+                )));
+            }
+            if v.eye.w != 0.0 && v.eye.w != 1.0 {
+                return Err(KnitError::Parameter(format!(
+                    "camera view {i}'s eye has w = {}: give (x, y, z, 1) for a perspective \
+                     camera or (dx, dy, dz, 0) for an orthographic one",
+                    v.eye.w
                 )));
             }
         }
@@ -213,6 +252,16 @@ impl DetailParams {
         }
         crate::settings::FRUSTUM_MARGIN.check(self.frustum_margin)?;
         crate::settings::HIDDEN_SUPERSAMPLING.check(self.hidden_supersampling)?;
+        let samples = w.max(h) as u64 * u64::from(self.hidden_supersampling);
+        if self.cull_hidden && !self.views.is_empty() && samples > MAX_HIDDEN_SAMPLES {
+            return Err(KnitError::Parameter(format!(
+                "hidden_supersampling {} at {w} x {h} pixels gives {samples} samples a side; \
+                 the hidden-yarn pass takes at most {MAX_HIDDEN_SAMPLES} (its time grows with \
+                 their square): lower hidden_supersampling to {} or less",
+                self.hidden_supersampling,
+                (MAX_HIDDEN_SAMPLES / u64::from(w.max(h))).max(1)
+            )));
+        }
         if self.cull_hidden && self.views.is_empty() && self.pinned_seen.is_none() {
             return Err(KnitError::Parameter(
                 "culling hidden yarn needs camera views or the pinned seen triangles of an \

@@ -23,6 +23,7 @@ use glam::{Mat4, Vec4};
 use rayon::prelude::*;
 
 use crate::detail::CameraView;
+use crate::error::{KnitError, Result};
 
 /// Samples per side of a tile.
 const TILE: usize = 64;
@@ -155,7 +156,8 @@ fn mark_view(
     view: &CameraView,
     grid: &Grid,
     seen: &mut [bool],
-) {
+    budget_bytes: u64,
+) -> Result<()> {
     let m = view.clip_from_object;
     let projected: Vec<Projected> = positions
         .par_chunks_exact(3)
@@ -170,24 +172,57 @@ fn mark_view(
         ]
     };
     let tiles_x = grid.tiles_x();
+    // The keys below hold one entry per tile each triangle touches: a triangle as large as
+    // the frame of a huge sample grid touches millions. Counted first, so that a camera
+    // resolution or supersampling too large for the budget is refused, not an abort.
+    let touched: u64 = (0..seen.len())
+        .into_par_iter()
+        .map(|t| match classify(grid, corners(t)) {
+            Class::Raster { i0, i1, j0, j1 } => {
+                ((i1 / TILE - i0 / TILE + 1) as u64) * ((j1 / TILE - j0 / TILE + 1) as u64)
+            }
+            _ => 0,
+        })
+        .reduce(|| 0, u64::saturating_add);
+    // Per touched (tile, triangle): its key, at most one winner id and one tile slice.
+    let per_touch = std::mem::size_of::<u64>() + std::mem::size_of::<u32>() + 16;
+    let bytes = touched
+        .saturating_mul(per_touch as u64)
+        .saturating_add((projected.len() * std::mem::size_of::<Projected>()) as u64);
+    if bytes > budget_bytes {
+        return Err(KnitError::Budget(format!(
+            "the hidden-yarn pass would need about {} MiB for a {} x {} sample grid, over \
+             the budget of {} MiB: lower the camera resolution or hidden_supersampling, turn \
+             cull_hidden off, or raise the budget",
+            bytes >> 20,
+            grid.width,
+            grid.height,
+            budget_bytes >> 20
+        )));
+    }
+    let mut keys: Vec<u64> = Vec::new();
+    keys.try_reserve_exact(touched as usize).map_err(|_| {
+        KnitError::Budget(format!(
+            "the hidden-yarn pass could not allocate {} MiB: lower the camera resolution or \
+             hidden_supersampling",
+            bytes >> 20
+        ))
+    })?;
     // (tile << 32 | triangle) for every tile each triangle's samples touch, sorted: each
     // tile's triangles in index order.
-    let mut keys: Vec<u64> = (0..seen.len())
-        .into_par_iter()
-        .flat_map_iter(|t| {
-            // Tile columns and rows as half-open ranges (empty when nothing is rasterised).
-            let (tx, ty) = match classify(grid, corners(t)) {
-                Class::Raster { i0, i1, j0, j1 } => {
-                    ((i0 / TILE)..(i1 / TILE + 1), (j0 / TILE)..(j1 / TILE + 1))
-                }
-                _ => (0..0, 0..0),
-            };
-            ty.flat_map(move |y| {
-                tx.clone()
-                    .map(move |x| ((y * tiles_x + x) as u64) << 32 | t as u64)
-            })
+    keys.par_extend((0..seen.len()).into_par_iter().flat_map_iter(|t| {
+        // Tile columns and rows as half-open ranges (empty when nothing is rasterised).
+        let (tx, ty) = match classify(grid, corners(t)) {
+            Class::Raster { i0, i1, j0, j1 } => {
+                ((i0 / TILE)..(i1 / TILE + 1), (j0 / TILE)..(j1 / TILE + 1))
+            }
+            _ => (0..0, 0..0),
+        };
+        ty.flat_map(move |y| {
+            tx.clone()
+                .map(move |x| ((y * tiles_x + x) as u64) << 32 | t as u64)
         })
-        .collect();
+    }));
     keys.par_sort_unstable();
     let kept: Vec<usize> = (0..seen.len())
         .into_par_iter()
@@ -219,6 +254,9 @@ fn mark_view(
             let mut w: Vec<u32> = id.iter().copied().filter(|&i| i != u32::MAX).collect();
             w.sort_unstable();
             w.dedup();
+            // Up to a tile of samples each before the dedup: kept whole, a million tiles
+            // would hold gigabytes of repeats. After it, at most this tile's keys.
+            w.shrink_to_fit();
             w
         })
         .collect();
@@ -227,6 +265,7 @@ fn mark_view(
             seen[t as usize] = true;
         }
     }
+    Ok(())
 }
 
 /// Writes triangle `t` (corners `p`: sample-grid x, y and depth) into one tile's buffers
@@ -303,7 +342,8 @@ fn rasterise(
 /// One flag per triangle: whether any of `views` sees it, sampled `supersampling x
 /// supersampling` times per pixel of `resolution` over the frame widened by `margin` (a
 /// fraction of the half-frame, as [`crate::detail::DetailParams::frustum_margin`]; negative:
-/// none). `positions` `(V, 3)` and `triangles` `(T, 3)` as [`crate::knit::KnitOutput`]
+/// none). The pass's own buffers stay within `budget_bytes` or it is a
+/// [`KnitError::Budget`]. `positions` `(V, 3)` and `triangles` `(T, 3)` as [`crate::knit::KnitOutput`]
 /// holds them, in the views' object space. Runs in the caller's rayon pool.
 pub fn seen_triangles(
     positions: &[f32],
@@ -312,13 +352,14 @@ pub fn seen_triangles(
     resolution: (u32, u32),
     supersampling: u32,
     margin: f32,
-) -> Vec<bool> {
+    budget_bytes: u64,
+) -> Result<Vec<bool>> {
     let mut seen = vec![false; triangles.len() / 3];
     let grid = Grid::new(resolution, supersampling, margin);
     for view in views {
-        mark_view(positions, triangles, view, &grid, &mut seen);
+        mark_view(positions, triangles, view, &grid, &mut seen, budget_bytes)?;
     }
-    seen
+    Ok(seen)
 }
 
 #[cfg(test)]
@@ -365,14 +406,14 @@ mod tests {
     #[test]
     fn a_square_behind_a_larger_one_is_not_seen() {
         let (p, t) = scene(&[(0.0, -0.5, 0.5), (0.5, -0.8, 0.8)]);
-        let seen = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, -1.0);
+        let seen = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, -1.0, u64::MAX).unwrap();
         assert_eq!(seen, vec![false, false, true, true]);
     }
 
     #[test]
     fn a_square_in_front_is_seen_and_so_is_what_shows_around_it() {
         let (p, t) = scene(&[(0.0, -0.8, 0.8), (0.5, -0.5, 0.5)]);
-        let seen = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, -1.0);
+        let seen = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, -1.0, u64::MAX).unwrap();
         assert_eq!(seen, vec![true, true, true, true]);
     }
 
@@ -384,8 +425,8 @@ mod tests {
             clip_from_object: Mat4::from_scale(Vec3::new(1.0, -1.0, 1.0)),
             eye: Vec4::new(0.0, 0.0, -1.0, 0.0),
         };
-        let once = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, -1.0);
-        let both = seen_triangles(&p, &t, &[ortho(), below], (32, 32), 2, -1.0);
+        let once = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, -1.0, u64::MAX).unwrap();
+        let both = seen_triangles(&p, &t, &[ortho(), below], (32, 32), 2, -1.0, u64::MAX).unwrap();
         assert_eq!(once, vec![false, false, true, true]);
         assert_eq!(both, vec![true, true, true, true]);
     }
@@ -394,8 +435,8 @@ mod tests {
     fn the_margin_keeps_what_lies_just_outside_the_frame() {
         // A square beyond the right edge of the frame, within a 0.5 margin.
         let (p, t) = scene(&[(0.0, 1.1, 1.3)]);
-        let none = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, 0.0);
-        let margin = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, 0.5);
+        let none = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, 0.0, u64::MAX).unwrap();
+        let margin = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, 0.5, u64::MAX).unwrap();
         assert_eq!(none, vec![false, false]);
         assert_eq!(margin, vec![true, true]);
     }
@@ -406,7 +447,7 @@ mod tests {
         let p = vec![0.001, 0.001, 0.0, 0.002, 0.001, 0.0, 0.001, 0.002, 0.0];
         let t = vec![0, 1, 2];
         assert_eq!(
-            seen_triangles(&p, &t, &[ortho()], (4, 4), 1, -1.0),
+            seen_triangles(&p, &t, &[ortho()], (4, 4), 1, -1.0, u64::MAX).unwrap(),
             vec![false]
         );
         let persp = CameraView {
@@ -416,19 +457,19 @@ mod tests {
         // One corner behind the eye: not rasterised, kept.
         let p = vec![0.0, 0.0, -1.0, 0.1, 0.0, -1.0, 0.0, 0.0, 1.0];
         assert_eq!(
-            seen_triangles(&p, &t, &[persp], (8, 8), 1, -1.0),
+            seen_triangles(&p, &t, &[persp], (8, 8), 1, -1.0, u64::MAX).unwrap(),
             vec![true]
         );
         // All behind: never seen.
         let p = vec![0.0, 0.0, 1.0, 0.1, 0.0, 1.0, 0.0, 0.1, 1.0];
         assert_eq!(
-            seen_triangles(&p, &t, &[persp], (8, 8), 1, -1.0),
+            seen_triangles(&p, &t, &[persp], (8, 8), 1, -1.0, u64::MAX).unwrap(),
             vec![false]
         );
         // A NaN corner: kept (the view cannot say).
         let p = vec![f32::NAN, 0.0, -1.0, 0.1, 0.0, -1.0, 0.0, 0.1, -1.0];
         assert_eq!(
-            seen_triangles(&p, &t, &[persp], (8, 8), 1, -1.0),
+            seen_triangles(&p, &t, &[persp], (8, 8), 1, -1.0, u64::MAX).unwrap(),
             vec![true]
         );
     }
@@ -446,7 +487,7 @@ mod tests {
         let (p, t) = scene(&squares);
         let run = |n| {
             crate::parallel::run_in_pool(Some(n), || {
-                seen_triangles(&p, &t, &[ortho()], (200, 150), 2, 0.1)
+                seen_triangles(&p, &t, &[ortho()], (200, 150), 2, 0.1, u64::MAX).unwrap()
             })
             .unwrap()
         };

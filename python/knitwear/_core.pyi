@@ -109,7 +109,7 @@ class Pattern:
     def from_text(text: str) -> Pattern:
         """Knitspeak or a chart, told apart by content."""
     @staticmethod
-    def from_file(path: str | os.PathLike[str]) -> Pattern:
+    def from_file(path: str | bytes | os.PathLike[str] | os.PathLike[bytes]) -> Pattern:
         """A UTF-8 file of Knitspeak or a chart; an unreadable file is a PatternError."""
     @staticmethod
     def looks_like_knitspeak(text: str) -> bool: ...

@@ -47,18 +47,20 @@ impl PreparedKnit {
         let (c, out, seen) = run_in_pool(self.params.threads, || {
             let c = self.centrelines(surface);
             let out = self.bundles(&c);
-            let seen = pinned.unwrap_or_else(|| {
-                seen_triangles(
+            let seen = match pinned {
+                Some(seen) => seen,
+                None => seen_triangles(
                     &out.positions,
                     &out.triangles,
                     &d.views,
                     d.resolution,
                     d.hidden_supersampling,
                     d.frustum_margin,
-                )
-            });
-            (c, out, seen)
-        })?;
+                    self.params.budget_bytes,
+                )?,
+            };
+            Ok::<_, KnitError>((c, out, seen))
+        })??;
         let subset = MeshSubset::new(
             &seen,
             &out.triangles,

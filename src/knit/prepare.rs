@@ -170,6 +170,13 @@ impl PreparedKnit {
             },
         );
         let (stitch_width, stitch_height) = match p.stitch_size {
+            // A stitch larger than the whole surface knits no fabric: a unit mistake.
+            Some((w, h)) if w > len_u || h > len_v => {
+                return Err(KnitError::Parameter(format!(
+                    "stitch_size ({w} x {h}) is larger than the surface ({len_u:.4} x \
+                     {len_v:.4}, scene units): give it in the surface's units"
+                )))
+            }
             Some(size) => size,
             None => {
                 let (rw, rh) = run_in_pool(p.threads, || {

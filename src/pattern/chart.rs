@@ -192,6 +192,8 @@ pub fn parse_chart(text: &str) -> Result<StitchPattern> {
         .map(|l| l.chars().filter(|c| !matches!(c, ' ' | '\t')).collect())
         .collect();
     let width = symbols[0].len();
+    // Before any row is read: a chart too large to knit is refused at once.
+    super::check_size(width, n)?;
     if let Some((i, r)) = symbols.iter().enumerate().find(|(_, r)| r.len() != width) {
         return Err(KnitError::Pattern(format!(
             "row {} has {} stitches but row 1 has {width}: every chart row must be equally wide",

@@ -27,6 +27,25 @@ pub use stitch::{Face, Form, Stitch};
 
 use crate::error::{KnitError, Result};
 
+/// Widest repeat a pattern may have, in stitches. Real repeats are at most a few dozen
+/// stitches (a whole Aran panel is under 100); the tuning and relief work grows with the
+/// repeat, so the bound keeps every first knit bounded.
+pub const MAX_PATTERN_WIDTH: usize = 256;
+/// Most rows a pattern's repeat may have.
+pub const MAX_PATTERN_ROWS: usize = 1024;
+
+/// Refuses a repeat over [`MAX_PATTERN_WIDTH`] x [`MAX_PATTERN_ROWS`].
+pub fn check_size(width: usize, height: usize) -> Result<()> {
+    if width > MAX_PATTERN_WIDTH || height > MAX_PATTERN_ROWS {
+        return Err(KnitError::Pattern(format!(
+            "the pattern's repeat is {width} stitches x {height} rows; a repeat may be at most \
+             {MAX_PATTERN_WIDTH} stitches x {MAX_PATTERN_ROWS} rows (for a picture in colour, \
+             use a colour chart or image instead of a stitch chart)"
+        )));
+    }
+    Ok(())
+}
+
 /// A stitch pattern: a `width x height` chart repeated over the fabric in both directions.
 /// Invariant: `width >= 1`, `height >= 1`, `cells.len() == width * height`; row 0 is the
 /// bottom row of the chart.
@@ -46,6 +65,7 @@ impl StitchPattern {
         if height == 0 || width == 0 {
             return Err(KnitError::Pattern("the chart has no stitches".into()));
         }
+        check_size(width, height)?;
         if let Some((i, r)) = rows_bottom_up
             .iter()
             .enumerate()
@@ -142,6 +162,65 @@ impl StitchPattern {
         p
     }
 
+    /// The smallest repeat of the chart: the least `h x w` (dividing the height and the
+    /// width) whose cells, repeated, give every cell of this one. A chart drawn as several
+    /// repeats of one motif knits exactly as that motif.
+    pub fn minimal_repeat(&self) -> Self {
+        let divisors = |n: usize| (1..=n).filter(move |d| n % d == 0);
+        let repeats = |h: usize, w: usize| {
+            (0..self.height).all(|c| {
+                (0..self.width).all(|x| {
+                    self.cells[c * self.width + x] == self.cells[(c % h) * self.width + x % w]
+                })
+            })
+        };
+        let w = divisors(self.width)
+            .find(|&w| repeats(self.height, w))
+            .unwrap_or(self.width);
+        let h = divisors(self.height)
+            .find(|&h| repeats(h, w))
+            .unwrap_or(self.height);
+        let mut p = self.clone();
+        p.width = w;
+        p.height = h;
+        p.cells = (0..h)
+            .flat_map(|c| (0..w).map(move |x| (c, x)))
+            .map(|(c, x)| self.cells[c * self.width + x])
+            .collect();
+        p
+    }
+
+    /// The faces of the first `rows x cols` cells as plain loops: every loop lands in the
+    /// stitch above it (no crossing, decrease, yarn-over or slip), each cell keeping its face
+    /// (knit or purl) and a twisted or bobble form. A stand-in that knits like the chart's
+    /// mix of faces, for work that cannot afford the whole of a very large chart.
+    pub fn plain_window(&self, rows: usize, cols: usize) -> Self {
+        let (h, w) = (rows.clamp(1, self.height), cols.clamp(1, self.width));
+        let mut p = self.clone();
+        p.name = format!("{} ({w} x {h} plain window)", self.name);
+        p.width = w;
+        p.height = h;
+        p.cells = (0..h)
+            .flat_map(|c| (0..w).map(move |x| (c, x)))
+            .map(|(c, x)| {
+                let s = self.cells[c * self.width + x];
+                Stitch {
+                    form: match s.form {
+                        Form::Twisted | Form::Bobble => s.form,
+                        _ => Form::Plain,
+                    },
+                    source_offset: 0,
+                    sources: 1,
+                    land_offset: 0,
+                    land_layer: 0,
+                    rise: 0,
+                    ..s
+                }
+            })
+            .collect();
+        p
+    }
+
     /// Whether any loop crosses or is gathered with another (a cable, a decrease).
     pub fn has_crossings(&self) -> bool {
         self.cells
@@ -221,4 +300,57 @@ fn normalise_name(name: &str) -> String {
         .filter(|c| !matches!(c, ' ' | '-' | '_'))
         .flat_map(char::to_lowercase)
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn chart(rows: &[&str]) -> StitchPattern {
+        StitchPattern::from_chart(&rows.join("\n")).unwrap()
+    }
+
+    #[test]
+    fn the_smallest_repeat_of_a_tiled_chart_is_its_motif() {
+        let motif = ["kkpp", "kkpp", "ppkk", "ppkk"];
+        let tiled: Vec<String> = (0..3)
+            .flat_map(|_| motif.iter().map(|r| r.repeat(3)))
+            .collect();
+        let tiled = chart(&tiled.iter().map(String::as_str).collect::<Vec<_>>());
+        let m = tiled.minimal_repeat();
+        assert_eq!((m.width(), m.height()), (4, 4));
+        assert_eq!(m.chart(), chart(&motif).chart());
+        // A chart with no smaller repeat is its own.
+        let c4 = StitchPattern::preset("cable_c4").unwrap();
+        assert_eq!(c4.minimal_repeat(), c4);
+    }
+
+    #[test]
+    fn a_plain_window_keeps_faces_and_lets_every_loop_land_straight() {
+        let lace = StitchPattern::preset("lace_diamond").unwrap();
+        let w = lace.plain_window(3, 5);
+        assert_eq!((w.width(), w.height()), (5, 3));
+        for c in 0..3 {
+            for x in 0..5 {
+                let (s, o) = (w.stitch(c, x), lace.stitch(c, x));
+                assert_eq!(s.face, o.face);
+                assert_eq!(
+                    (s.sources, s.source_offset, s.land_offset, s.land_layer),
+                    (1, 0, 0, 0)
+                );
+                assert!(matches!(s.form, Form::Plain | Form::Twisted | Form::Bobble));
+            }
+        }
+        assert!(!w.has_crossings());
+    }
+
+    #[test]
+    fn repeats_over_the_limit_are_refused() {
+        assert!(check_size(MAX_PATTERN_WIDTH, MAX_PATTERN_ROWS).is_ok());
+        let e = check_size(MAX_PATTERN_WIDTH + 1, 1)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("257 stitches"), "{e}");
+        assert!(check_size(1, MAX_PATTERN_ROWS + 1).is_err());
+    }
 }

@@ -255,6 +255,17 @@ impl PileField {
         let pile_radius = p
             .pile_radius
             .unwrap_or(DEFAULT_RADIUS_PER_PILE_SPACING * spacing);
+        // Plush piles are millimetres on a garment: one longer than the fabric is wide (or a
+        // radius beyond that) is a unit mistake, and its geometry would dwarf the surface.
+        let extent = len_u.max(len_v);
+        for (name, value) in [("pile_length", pile_length), ("pile_radius", pile_radius)] {
+            if value > extent {
+                return Err(KnitError::Parameter(format!(
+                    "{name} {value} is longer than the fabric is wide ({extent:.4}, scene \
+                     units): give it in the surface's units"
+                )));
+            }
+        }
         let t = p.nominal.direction()?;
         let pressed = pressed_direction(p.press_azimuth.unwrap_or(p.nominal.azimuth()));
 

@@ -47,8 +47,13 @@ impl PyCamera {
     fn new(
         matrices: &Bound<'_, PyAny>,
         eyes: &Bound<'_, PyAny>,
-        resolution: (u32, u32),
+        #[pyo3(from_py_with = super::int_pair_arg)] resolution: (i128, i128),
     ) -> PyResult<Self> {
+        // The core checks the range; here only what a u32 can hold.
+        let resolution = (
+            super::within("camera resolution width", resolution.0, 0u32, u32::MAX)?,
+            super::within("camera resolution height", resolution.1, 0u32, u32::MAX)?,
+        );
         let (ms, m) = floats(matrices, "matrices")?;
         let (es, e) = floats(eyes, "eyes")?;
         let views = match (ms.as_slice(), es.as_slice()) {
@@ -140,7 +145,7 @@ pub(super) fn detail_from(
     frustum_margin: f32,
     cull_back_faces: bool,
     cull_hidden: bool,
-    hidden_supersampling: u32,
+    hidden_supersampling: i128,
     seen_triangles: Option<Vec<u8>>,
 ) -> PyResult<Option<DetailParams>> {
     let pinned = stitch_levels.map(pinned_levels).transpose()?;
@@ -175,7 +180,12 @@ pub(super) fn detail_from(
         frustum_margin,
         cull_back_faces,
         cull_hidden: cull_hidden || seen_triangles.is_some(),
-        hidden_supersampling,
+        hidden_supersampling: super::within(
+            "hidden_supersampling",
+            hidden_supersampling,
+            0u32,
+            u32::MAX,
+        )?,
         pinned_seen: seen_triangles,
     }))
 }

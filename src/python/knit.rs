@@ -108,38 +108,28 @@ pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResul
 /// params.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn params_from(
-    courses: Option<i64>,
-    wales: Option<i64>,
+    courses: Option<i128>,
+    wales: Option<i128>,
     gauge: Option<(f32, f32)>,
     yarn_radius: Option<f32>,
     stitch_size: Option<(f32, f32)>,
     fluffiness: f32,
-    ring_segments: i64,
-    plies: i64,
-    samples_per_loop: i64,
+    ring_segments: i128,
+    plies: i128,
+    samples_per_loop: i128,
     tension: f32,
     kappa: f32,
-    seed: u64,
+    seed: i128,
     colors: Option<&Bound<'_, PyColorPattern>>,
     color_image: Option<&Bound<'_, PyAny>>,
     color_variation: f32,
-    threads: Option<i64>,
-    budget_bytes: Option<u64>,
+    threads: Option<i128>,
+    budget_bytes: Option<i128>,
     measure_clearance: bool,
 ) -> PyResult<KnitParams> {
-    let count = |name: &str, v: Option<i64>| -> PyResult<Option<usize>> {
-        match v {
-            None => Ok(None),
-            Some(n) if n >= 1 => Ok(Some(usize::try_from(n).unwrap_or(usize::MAX))),
-            Some(n) => Err(ParameterError::new_err(format!(
-                "{name} must be at least 1, not {n}"
-            ))),
-        }
-    };
-    let positive = |name: &str, v: i64| -> PyResult<usize> {
-        usize::try_from(v)
-            .map_err(|_| ParameterError::new_err(format!("{name} must not be negative, not {v}")))
-    };
+    let count = |name: &str, v: Option<i128>| v.map(|n| count_arg(name, n, 1)).transpose();
+    // The core checks each setting's own range; here only what a usize cannot hold.
+    let positive = |name: &str, v: i128| count_arg(name, v, 0);
     let image = match color_image {
         None => None,
         Some(obj) => {
@@ -174,7 +164,7 @@ pub(crate) fn params_from(
         samples_per_loop: positive("samples_per_loop", samples_per_loop)?,
         tension,
         kappa,
-        seed,
+        seed: seed_arg(seed)?,
         colors: colors.map(|c| c.get().inner.clone()),
         color_image: image,
         color_variation,
@@ -182,7 +172,7 @@ pub(crate) fn params_from(
             None => None,
             Some(t) => Some(positive("threads", t)?),
         },
-        budget_bytes: budget_bytes.unwrap_or(crate::budget::DEFAULT_BUDGET_BYTES),
+        budget_bytes: budget_arg(budget_bytes, crate::budget::DEFAULT_BUDGET_BYTES)?,
         measure_clearance,
         stitch_size,
         detail: None,
@@ -214,23 +204,23 @@ impl PyKnit {
         py: Python<'_>,
         surface: &Bound<'_, PyAny>,
         pattern: &Bound<'_, PyPattern>,
-        courses: Option<i64>,
-        wales: Option<i64>,
+        #[pyo3(from_py_with = opt_int_arg)] courses: Option<i128>,
+        #[pyo3(from_py_with = opt_int_arg)] wales: Option<i128>,
         gauge: Option<(f32, f32)>,
         yarn_radius: Option<f32>,
         stitch_size: Option<(f32, f32)>,
         fluffiness: f32,
-        ring_segments: i64,
-        plies: i64,
-        samples_per_loop: i64,
+        #[pyo3(from_py_with = int_arg)] ring_segments: i128,
+        #[pyo3(from_py_with = int_arg)] plies: i128,
+        #[pyo3(from_py_with = int_arg)] samples_per_loop: i128,
         tension: f32,
         kappa: f32,
-        seed: u64,
+        #[pyo3(from_py_with = int_arg)] seed: i128,
         colors: Option<&Bound<'_, PyColorPattern>>,
         color_image: Option<&Bound<'_, PyAny>>,
         color_variation: f32,
-        threads: Option<i64>,
-        budget_bytes: Option<u64>,
+        #[pyo3(from_py_with = opt_int_arg)] threads: Option<i128>,
+        #[pyo3(from_py_with = opt_int_arg)] budget_bytes: Option<i128>,
         measure_clearance: bool,
         camera: Option<&Bound<'_, detail::PyCamera>>,
         stitch_levels: Option<&Bound<'_, PyAny>>,
@@ -240,7 +230,7 @@ impl PyKnit {
         frustum_margin: f32,
         cull_back_faces: bool,
         cull_hidden: bool,
-        hidden_supersampling: u32,
+        #[pyo3(from_py_with = int_arg)] hidden_supersampling: i128,
         seen_triangles: Option<Vec<u8>>,
     ) -> PyResult<Self> {
         let surf = AnySurface::from_py(surface)?;

@@ -60,14 +60,10 @@ pub(crate) fn measure_cover(
     py: Python<'_>,
     result: &Bound<'_, PyKnitResult>,
     bounds: (f32, f32, f32, f32),
-    resolution: usize,
+    #[pyo3(from_py_with = int_arg)] resolution: i128,
 ) -> PyResult<f64> {
     let (v, ranges, radius) = result_centreline(py, result)?;
-    if !(1..=8192).contains(&resolution) {
-        return Err(to_py(KnitError::Parameter(format!(
-            "resolution must be in 1..=8192, not {resolution}"
-        ))));
-    }
+    let resolution = within("resolution", resolution, 1u32, 8192)? as usize;
     let (min, max) = (
         glam::Vec2::new(bounds.0, bounds.1),
         glam::Vec2::new(bounds.2, bounds.3),

@@ -14,6 +14,49 @@ pub struct PyPattern {
     pub(crate) inner: StitchPattern,
 }
 
+/// Largest pattern file read: a 256 x 1024 chart with its legend is about 270 KB.
+const MAX_PATTERN_FILE_BYTES: u64 = 4 << 20;
+
+/// The text of a pattern file, refusing a directory, a device that never ends (`/dev/zero`)
+/// or a file too large to be a pattern before reading it all.
+fn read_pattern_file(path: &std::path::Path) -> Result<String, KnitError> {
+    use std::io::Read;
+    let cannot = |why: String| {
+        KnitError::Pattern(format!(
+            "cannot read pattern file {}: {why}",
+            path.display()
+        ))
+    };
+    let file = std::fs::File::open(path).map_err(|e| cannot(e.to_string()))?;
+    if file.metadata().is_ok_and(|m| m.is_dir()) {
+        return Err(cannot("it is a folder, not a file".into()));
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_PATTERN_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| cannot(e.to_string()))?;
+    if bytes.len() as u64 > MAX_PATTERN_FILE_BYTES {
+        return Err(cannot(format!(
+            "it is larger than the {} MiB a pattern file may be",
+            MAX_PATTERN_FILE_BYTES >> 20
+        )));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        cannot(format!(
+            "it is not UTF-8 text (byte {} is not valid): save it as UTF-8",
+            e.utf8_error().valid_up_to()
+        ))
+    })
+}
+
+/// A pattern parsed without the GIL, a panic caught as every core call's is.
+fn parsed(
+    py: Python<'_>,
+    parse: impl FnOnce() -> Result<StitchPattern, KnitError> + Send,
+) -> PyResult<PyPattern> {
+    guarded(py, parse).map(|inner| PyPattern { inner })
+}
+
 #[pymethods]
 impl PyPattern {
     /// A named preset; see `Pattern.presets()`.
@@ -25,41 +68,36 @@ impl PyPattern {
     }
     /// A text chart: one line per row, top row first; k (knit) and p (purl) as seen on the front.
     #[staticmethod]
-    fn from_chart(text: &str) -> PyResult<Self> {
-        StitchPattern::from_chart(text)
-            .map(|inner| Self { inner })
-            .map_err(to_py)
+    fn from_chart(py: Python<'_>, text: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let text = text_arg(text, "the chart text")?;
+        parsed(py, move || StitchPattern::from_chart(&text))
     }
     /// Knitspeak row instructions ("Row 1 (RS): *k2, 2/2 RC, p2; rep from *."): cables,
     /// decreases, yarn-overs, slips, bobbles, repeats (see the README).
     #[staticmethod]
-    fn from_knitspeak(text: &str) -> PyResult<Self> {
-        StitchPattern::from_knitspeak(text)
-            .map(|inner| Self { inner })
-            .map_err(to_py)
+    fn from_knitspeak(py: Python<'_>, text: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let text = text_arg(text, "the Knitspeak text")?;
+        parsed(py, move || StitchPattern::from_knitspeak(&text))
     }
     /// Knitspeak or a chart, told apart by content (Knitspeak starts with a row header).
     #[staticmethod]
-    fn from_text(text: &str) -> PyResult<Self> {
-        StitchPattern::from_text(text)
-            .map(|inner| Self { inner })
-            .map_err(to_py)
+    fn from_text(py: Python<'_>, text: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let text = text_arg(text, "the pattern text")?;
+        parsed(py, move || StitchPattern::from_text(&text))
     }
-    /// A pattern file (UTF-8 text): Knitspeak or a chart, told apart by content. A file that
-    /// cannot be read is a PatternError naming the path.
+    /// A pattern file (UTF-8 text, at most [`MAX_PATTERN_FILE_BYTES`]): Knitspeak or a chart,
+    /// told apart by content. The path may be a str, bytes or os.PathLike. A file that cannot
+    /// be read is a PatternError naming the path.
     #[staticmethod]
-    fn from_file(path: std::path::PathBuf) -> PyResult<Self> {
-        let text = std::fs::read_to_string(&path).map_err(|e| {
-            PatternError::new_err(format!("cannot read pattern file {}: {e}", path.display()))
-        })?;
-        StitchPattern::from_text(&text)
-            .map(|inner| Self { inner })
-            .map_err(|e| match e {
-                KnitError::Pattern(m) => {
-                    to_py(KnitError::Pattern(format!("{}: {m}", path.display())))
-                }
-                other => to_py(other),
+    fn from_file(py: Python<'_>, path: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let path = path_arg(path)?;
+        parsed(py, move || {
+            let text = read_pattern_file(&path)?;
+            StitchPattern::from_text(&text).map_err(|e| match e {
+                KnitError::Pattern(m) => KnitError::Pattern(format!("{}: {m}", path.display())),
+                other => other,
             })
+        })
     }
     /// Per chart row, bottom row first: (loops of the row below it works, stitches it makes).
     fn stitch_counts(&self) -> Vec<(usize, usize)> {
@@ -67,8 +105,11 @@ impl PyPattern {
     }
     /// Whether `text` reads as Knitspeak (starts with a row header) rather than a chart.
     #[staticmethod]
-    fn looks_like_knitspeak(text: &str) -> bool {
-        crate::pattern::looks_like_knitspeak(text)
+    fn looks_like_knitspeak(text: &Bound<'_, PyAny>) -> PyResult<bool> {
+        Ok(crate::pattern::looks_like_knitspeak(&text_arg(
+            text,
+            "the pattern text",
+        )?))
     }
     #[staticmethod]
     fn presets() -> Vec<&'static str> {
@@ -145,8 +186,11 @@ impl PyColorPattern {
     /// Horizontal stripes: each colour in turn for `rows_each` courses.
     #[staticmethod]
     #[pyo3(signature = (palette, rows_each=2))]
-    fn stripes(palette: Vec<Vec<f32>>, rows_each: usize) -> PyResult<Self> {
-        ColorPattern::stripes(palette_of(palette)?, rows_each)
+    fn stripes(
+        palette: Vec<Vec<f32>>,
+        #[pyo3(from_py_with = int_arg)] rows_each: i128,
+    ) -> PyResult<Self> {
+        ColorPattern::stripes(palette_of(palette)?, count_arg("rows_each", rows_each, 0)?)
             .map(|inner| Self { inner })
             .map_err(to_py)
     }

@@ -11,8 +11,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::{
-    flat, guarded, rows, to_py, AnySurface, InternalError, ParameterError, PyColorPattern,
-    PyGridSurface, PyMeshSurface, SurfaceError,
+    budget_arg, count_arg, flat, guarded, int_arg, opt_int_arg, rows, seed_arg, to_py, AnySurface,
+    InternalError, ParameterError, PyColorPattern, PyGridSurface, PyMeshSurface, SurfaceError,
 };
 use crate::pattern::ColorImage;
 use crate::pile::fractal_noise::{fractal_noise as core_noise, NoiseParams};
@@ -66,13 +66,8 @@ fn view_of(eye: Option<Vec<f32>>, view_dir: Option<Vec<f32>>) -> PyResult<View> 
     }
 }
 
-fn usize_arg(name: &str, v: i64, min: i64) -> PyResult<usize> {
-    if v < min {
-        return Err(ParameterError::new_err(format!(
-            "{name} must be at least {min}, not {v}"
-        )));
-    }
-    Ok(usize::try_from(v).unwrap_or(usize::MAX))
+fn usize_arg(name: &str, v: impl Into<i128>, min: usize) -> PyResult<usize> {
+    count_arg(name, v.into(), min)
 }
 
 fn stats_dict<'py>(py: Python<'py>, s: &PileStats) -> PyResult<Bound<'py, PyDict>> {
@@ -184,7 +179,7 @@ impl PyPlushField {
         py: Python<'_>,
         eye: Option<Vec<f32>>,
         view_dir: Option<Vec<f32>>,
-        threads: Option<i64>,
+        #[pyo3(from_py_with = opt_int_arg)] threads: Option<i128>,
     ) -> PyResult<PyPlushView> {
         let view = view_of(eye, view_dir)?;
         let threads = threads.map(|t| usize_arg("threads", t, 1)).transpose()?;
@@ -208,13 +203,13 @@ impl PyPlushField {
         slf: &Bound<'_, Self>,
         eye: Option<Vec<f32>>,
         view_dir: Option<Vec<f32>>,
-        threads: Option<i64>,
-        budget_bytes: Option<u64>,
+        #[pyo3(from_py_with = opt_int_arg)] threads: Option<i128>,
+        #[pyo3(from_py_with = opt_int_arg)] budget_bytes: Option<i128>,
     ) -> PyResult<PyPlushResult> {
         let py = slf.py();
         let view = view_of(eye, view_dir)?;
         let threads = threads.map(|t| usize_arg("threads", t, 1)).transpose()?;
-        let budget = budget_bytes.unwrap_or(crate::budget::DEFAULT_BUDGET_BYTES);
+        let budget = budget_arg(budget_bytes, crate::budget::DEFAULT_BUDGET_BYTES)?;
         let field = slf.get().inner.clone();
         let b = guarded(py, move || field.build(&view, threads, budget))?;
         to_result(py, slf.clone().unbind(), b)
@@ -341,18 +336,18 @@ fn colors_of(
 fn plush(
     py: Python<'_>,
     surface: &Bound<'_, PyAny>,
-    courses: Option<i64>,
-    wales: Option<i64>,
+    #[pyo3(from_py_with = opt_int_arg)] courses: Option<i128>,
+    #[pyo3(from_py_with = opt_int_arg)] wales: Option<i128>,
     gauge: Option<(f32, f32)>,
-    piles_per_stitch: i64,
+    #[pyo3(from_py_with = int_arg)] piles_per_stitch: i128,
     pile_length: Option<f32>,
     pile_radius: Option<f32>,
-    slices: i64,
+    #[pyo3(from_py_with = int_arg)] slices: i128,
     lean: Option<Vec<f32>>,
     theta_max: Option<f32>,
     noise_scales: Option<Vec<i64>>,
     noise_size: Option<(i64, i64)>,
-    seed: u64,
+    #[pyo3(from_py_with = int_arg)] seed: i128,
     eye: Option<Vec<f32>>,
     view_dir: Option<Vec<f32>>,
     colors: Option<&Bound<'_, PyAny>>,
@@ -360,8 +355,8 @@ fn plush(
     press: Option<&Bound<'_, PyAny>>,
     press_strength: Option<f32>,
     press_direction: Option<f32>,
-    threads: Option<i64>,
-    budget_bytes: Option<u64>,
+    #[pyo3(from_py_with = opt_int_arg)] threads: Option<i128>,
+    #[pyo3(from_py_with = opt_int_arg)] budget_bytes: Option<i128>,
 ) -> PyResult<PyPlushResult> {
     let surf = if let Ok(g) = surface.cast::<PyGridSurface>() {
         AnySurface::Grid(g.get().inner.clone())
@@ -397,7 +392,7 @@ fn plush(
             Some(PressMap::new(dims[1], dims[0], w).map_err(to_py)?)
         }
     };
-    let count = |name: &str, v: Option<i64>| v.map(|n| usize_arg(name, n, 1)).transpose();
+    let count = |name: &str, v: Option<i128>| v.map(|n| usize_arg(name, n, 1)).transpose();
     let params = PileParams {
         courses: count("courses", courses)?,
         wales: count("wales", wales)?,
@@ -422,13 +417,13 @@ fn plush(
                 usize_arg("noise height", h, 1)?,
             )),
         },
-        seed,
+        seed: seed_arg(seed)?,
         colors: colors_of(colors, color_image)?,
         press,
         press_strength: press_strength.unwrap_or(defaults.press_strength),
         press_azimuth: press_direction,
         threads: count("threads", threads)?,
-        budget_bytes: budget_bytes.unwrap_or(defaults.budget_bytes),
+        budget_bytes: budget_arg(budget_bytes, defaults.budget_bytes)?,
     };
     let out = guarded(py, move || match &surf {
         AnySurface::Grid(g) => core_plush(g.as_ref(), &params, &view),
@@ -453,20 +448,23 @@ fn fractal_noise(
     size: &Bound<'_, PyAny>,
     theta_max: Option<f32>,
     scales: Option<Vec<i64>>,
-    seed: u64,
+    #[pyo3(from_py_with = int_arg)] seed: i128,
     rgb: bool,
-    threads: Option<i64>,
+    #[pyo3(from_py_with = opt_int_arg)] threads: Option<i128>,
 ) -> PyResult<Py<PyAny>> {
-    let (w, h) = match size.extract::<(i64, i64)>() {
-        Ok(wh) => wh,
+    let (w, h) = match size.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>() {
+        Ok((w, h)) => (int_arg(&w)?, int_arg(&h)?),
         Err(_) => {
-            let n = size
-                .extract::<i64>()
+            let n = int_arg(size)
                 .map_err(|_| ParameterError::new_err("size must be an int or (width, height)"))?;
             (n, n)
         }
     };
-    let mut p = NoiseParams::new(usize_arg("width", w, 1)?, usize_arg("height", h, 1)?, seed);
+    let mut p = NoiseParams::new(
+        usize_arg("width", w, 1)?,
+        usize_arg("height", h, 1)?,
+        seed_arg(seed)?,
+    );
     if let Some(t) = theta_max {
         p.theta_max = t;
     }

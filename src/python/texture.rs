@@ -6,7 +6,10 @@ use numpy::ndarray::Array3;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 
-use super::{guarded, params_from, AnySurface, InternalError, PyColorPattern, PyPattern};
+use super::{
+    count_arg, guarded, int_arg, opt_int_arg, params_from, AnySurface, InternalError,
+    PyColorPattern, PyPattern,
+};
 use crate::texture::knit_texture as core_texture;
 
 /// The knitwear texture of `pattern` on `surface`: `(height, width, 4)` float32 linear RGBA
@@ -24,25 +27,25 @@ fn knit_texture(
     py: Python<'_>,
     surface: &Bound<'_, PyAny>,
     pattern: &Bound<'_, PyPattern>,
-    width: usize,
-    height: usize,
-    courses: Option<i64>,
-    wales: Option<i64>,
+    #[pyo3(from_py_with = int_arg)] width: i128,
+    #[pyo3(from_py_with = int_arg)] height: i128,
+    #[pyo3(from_py_with = opt_int_arg)] courses: Option<i128>,
+    #[pyo3(from_py_with = opt_int_arg)] wales: Option<i128>,
     gauge: Option<(f32, f32)>,
     yarn_radius: Option<f32>,
     stitch_size: Option<(f32, f32)>,
     fluffiness: f32,
-    ring_segments: i64,
-    plies: i64,
-    samples_per_loop: i64,
+    #[pyo3(from_py_with = int_arg)] ring_segments: i128,
+    #[pyo3(from_py_with = int_arg)] plies: i128,
+    #[pyo3(from_py_with = int_arg)] samples_per_loop: i128,
     tension: f32,
     kappa: f32,
-    seed: u64,
+    #[pyo3(from_py_with = int_arg)] seed: i128,
     colors: Option<&Bound<'_, PyColorPattern>>,
     color_image: Option<&Bound<'_, PyAny>>,
     color_variation: f32,
-    threads: Option<i64>,
-    budget_bytes: Option<u64>,
+    #[pyo3(from_py_with = opt_int_arg)] threads: Option<i128>,
+    #[pyo3(from_py_with = opt_int_arg)] budget_bytes: Option<i128>,
     measure_clearance: bool,
 ) -> PyResult<Py<PyAny>> {
     let surf = AnySurface::from_py(surface)?;
@@ -66,6 +69,10 @@ fn knit_texture(
         budget_bytes,
         measure_clearance,
     )?;
+    let (width, height) = (
+        count_arg("width", width, 0)?,
+        count_arg("height", height, 0)?,
+    );
     let pattern = pattern.get().inner.clone();
     let img = guarded(py, move || {
         core_texture(surf.as_dyn(), &pattern, &params, width, height)

@@ -41,7 +41,11 @@ const Q_TENSION: f32 = 1.0 / 100.0;
 
 #[derive(Clone, PartialEq, Eq, Hash)]
 struct Key {
+    /// The pattern tuned for: the user's, or its stand-in ([`stand_in`]).
     pattern: StitchPattern,
+    /// Whether `pattern` knits exactly as the user's (false for a plain window, whose
+    /// per-cell reliefs would not fit the user's cells, so none are made).
+    exact: bool,
     width: i64,
     height: i64,
     tension: i64,
@@ -126,6 +130,9 @@ fn straight(key: Key) -> NormalOffsets {
         relief: None,
         ..tuned.offsets
     };
+    if !key.exact {
+        return base;
+    }
     let relief = contact::relieve(
         &key.pattern.straightened(),
         key.width as f32 * Q_RATIO,
@@ -171,14 +178,17 @@ pub fn offsets_with_straight_wales(
         .offsets
         .clone()
         .with_straight(straight(key.clone()), edge_key.1.clone());
-    let edge = contact::relieve_edges(
-        pattern,
-        &offsets,
-        (key.width as f32 * Q_RATIO, key.height as f32 * Q_RATIO),
-        key.tension as f32 * Q_TENSION,
-        tuned.per_lean,
-    );
-    let offsets = match edge {
+    // The stand-in, not `pattern`: the same cells when it is exact, and bounded work.
+    let edge = key.exact.then(|| {
+        contact::relieve_edges(
+            &key.pattern,
+            &offsets,
+            (key.width as f32 * Q_RATIO, key.height as f32 * Q_RATIO),
+            key.tension as f32 * Q_TENSION,
+            tuned.per_lean,
+        )
+    });
+    let offsets = match edge.flatten() {
         Some(e) => offsets.with_edge_relief(e),
         None => offsets,
     };
@@ -186,6 +196,30 @@ pub fn offsets_with_straight_wales(
         c.insert(edge_key, offsets.clone());
     }
     offsets.scaled(diameter)
+}
+
+/// Most cells of a repeat tuned as it is. Tuning and relief cost grows with the repeat (a 16
+/// x 16 chart takes about 13 s on 2 cores, a 64 x 64 one minutes), and every preset is at
+/// most 128 cells.
+pub const MAX_TUNED_CELLS: usize = 256;
+
+/// The pattern the offsets are tuned on, and whether it knits exactly as `pattern`: the
+/// pattern itself up to [`MAX_TUNED_CELLS`] cells; beyond, its smallest repeat if that is
+/// small enough; else a plain window of at most [`MAX_TUNED_CELLS`] cells
+/// ([`StitchPattern::plain_window`]), which tunes the knit and purl offsets for the chart's
+/// mix of faces in bounded time.
+fn stand_in(pattern: &StitchPattern) -> (StitchPattern, bool) {
+    let cells = |p: &StitchPattern| p.width() * p.height();
+    if cells(pattern) <= MAX_TUNED_CELLS {
+        return (pattern.clone(), true);
+    }
+    let repeat = pattern.minimal_repeat();
+    if cells(&repeat) <= MAX_TUNED_CELLS {
+        return (repeat, true);
+    }
+    let cols = repeat.width().min(16);
+    let rows = repeat.height().min(MAX_TUNED_CELLS / cols);
+    (repeat.plain_window(rows, cols), false)
 }
 
 /// The cache key: the pattern, and the stitch proportions (in diameters) and tension
@@ -197,8 +231,10 @@ fn key(
     diameter: f32,
     tension: f32,
 ) -> Key {
+    let (pattern, exact) = stand_in(pattern);
     let key = Key {
-        pattern: pattern.clone(),
+        pattern,
+        exact,
         width: (stitch_width / diameter / Q_RATIO).round() as i64,
         height: (stitch_height / diameter / Q_RATIO).round() as i64,
         tension: (tension / Q_TENSION).round() as i64,
@@ -213,12 +249,16 @@ fn key(
 /// The tuning for `key`, from the cache or tuned now (in diameters).
 fn tuned(key: Key) -> Tuned {
     let run = || {
-        tune(
+        let mut t = tune(
             &key.pattern,
             key.width as f32 * Q_RATIO,
             key.height as f32 * Q_RATIO,
             key.tension as f32 * Q_TENSION,
-        )
+        );
+        if !key.exact {
+            t.offsets.relief = None;
+        }
+        t
     };
     // The map's lock is held only to find the key's cell, never while tuning.
     let cell = match cache().lock() {

@@ -4,8 +4,9 @@
 //! [`parse_stitch`] from the one vocabulary.
 
 use super::lexer::{tokens, Tok};
-use super::MAX_KNITSPEAK_WIDTH;
+use super::{MAX_BRACKET_DEPTH, MAX_KNITSPEAK_WIDTH};
 use crate::error::{KnitError, Result};
+use crate::pattern::instruction::MAX_CROSS_SIDE;
 use crate::pattern::vocabulary::{
     after_repeat_from, is_knit_or_purl_name, parse_stitch, suggest, Stitched,
 };
@@ -160,6 +161,14 @@ impl BodyParser<'_> {
                     return Err(self.err(&c.to_string(), "a closing bracket with no opening one"));
                 }
                 Tok::Open(c) => {
+                    // Written patterns nest brackets two or three deep; a bound keeps the
+                    // recursion far from the end of any thread's stack.
+                    if depth >= MAX_BRACKET_DEPTH {
+                        return Err(self.err(
+                            &c.to_string(),
+                            &format!("brackets nest more than {MAX_BRACKET_DEPTH} deep"),
+                        ));
+                    }
                     let inner = self.list(Some(c), depth + 1)?;
                     // `(18 sts)`: a stitch count.
                     if let [El::Count(n)] = inner.as_slice() {
@@ -341,6 +350,20 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
 /// An unknown stitch, with the closest one the vocabulary offers.
 fn unknown(what: &str, instruction: usize, token: &str) -> KnitError {
     let closest = suggest(token);
+    // A well-formed cross too wide for the vocabulary is "closest" to itself: say why instead.
+    if closest.eq_ignore_ascii_case(token.trim()) {
+        let why = if token.contains('/') {
+            format!(
+                "a cable or twist crosses at most {MAX_CROSS_SIDE} stitches over \
+                 {MAX_CROSS_SIDE} (e.g. \"6/6 RC\")"
+            )
+        } else {
+            "it is not in knitwear's stitch vocabulary".to_string()
+        };
+        return KnitError::Pattern(format!(
+            "{what}, instruction {instruction}: unknown stitch \"{token}\": {why}"
+        ));
+    }
     KnitError::Pattern(format!(
         "{what}, instruction {instruction}: unknown stitch \"{token}\" (did you mean \
          \"{closest}\"?)"

@@ -65,8 +65,11 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
         }
         if let Some((a, b)) = part.split_once(['-', '–']) {
             let (a, b) = (number(a, header)?, number(b, header)?);
-            if b < a || b - a > MAX_KNITSPEAK_ROWS {
-                return Err(bad_header(header));
+            if b < a {
+                return Err(KnitError::Pattern(format!(
+                    "\"{}\": a range of rows runs upwards, e.g. \"Rows {b}-{a}:\"",
+                    header.trim()
+                )));
             }
             numbers.extend(a..=b);
         } else {
@@ -87,8 +90,21 @@ fn strip_any<'a>(s: &'a str, words: &[&str]) -> Option<&'a str> {
     words.iter().find_map(|w| s.strip_prefix(w))
 }
 
+/// A row number, at most [`MAX_KNITSPEAK_ROWS`]: a header can name no row a pattern cannot
+/// have, so a range such as `Rows 1-100000000` is refused before anything is made of it.
 fn number(s: &str, header: &str) -> Result<usize> {
-    s.trim().parse().map_err(|_| bad_header(header))
+    let s = s.trim();
+    if !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) {
+        return match s.parse::<usize>() {
+            Ok(n) if (1..=MAX_KNITSPEAK_ROWS).contains(&n) => Ok(n),
+            _ => Err(KnitError::Pattern(format!(
+                "\"{}\": row {s} is outside the rows 1 to {MAX_KNITSPEAK_ROWS} a pattern may \
+                 number",
+                header.trim()
+            ))),
+        };
+    }
+    Err(bad_header(header))
 }
 
 fn bad_header(header: &str) -> KnitError {

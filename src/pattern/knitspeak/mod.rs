@@ -79,9 +79,11 @@ use crate::error::{KnitError, Result};
 
 /// Widest chart a Knitspeak pattern may make (the least common multiple of its rows' repeats,
 /// or a panel's width).
-pub const MAX_KNITSPEAK_WIDTH: usize = 256;
+pub const MAX_KNITSPEAK_WIDTH: usize = crate::pattern::MAX_PATTERN_WIDTH;
+/// Deepest brackets may nest (`[k1, (p1, k1) 2 times] 3 times` is two deep).
+pub const MAX_BRACKET_DEPTH: usize = 16;
 /// Most rows a Knitspeak pattern may number.
-pub const MAX_KNITSPEAK_ROWS: usize = 1024;
+pub const MAX_KNITSPEAK_ROWS: usize = crate::pattern::MAX_PATTERN_ROWS;
 
 /// Reads Knitspeak text (see the module docs) into a pattern whose chart is as seen on the
 /// right side, row 1 at the bottom.
