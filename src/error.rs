@@ -20,6 +20,9 @@ pub enum KnitError {
     /// The output would exceed the memory budget; nothing was allocated.
     #[error("over budget: {0}")]
     Budget(String),
+    /// The call was stopped on request ([`crate::cancel`]); nothing it made was kept.
+    #[error("cancelled: the knit was stopped before it finished")]
+    Cancelled,
     /// A bug in knitwear (a caught panic, a broken invariant). Not the user's fault.
     #[error("internal error (please report it): {0}")]
     Internal(String),

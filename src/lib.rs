@@ -12,6 +12,7 @@
 //! | arithmetic | [`portable_math`] | the same float bits on every machine |
 //! | buffers | [`output_buffer`] | preallocated output buffers handed to NumPy |
 //! | threads | [`parallel`] | the private rayon pool and work splitting |
+//! | cancellation | [`cancel`] | stopping long work on request (Ctrl-C, Esc) |
 //! | budget | [`budget`] | output sizes and the memory budget check |
 //! | gauge | [`gauge`] | stitch counts from a knitter's gauge |
 //! | surface | [`surface`] | positions and normals over a (u,v) domain (NURBS grid or UV mesh) |
@@ -33,6 +34,7 @@
 //! The Python bindings live in `src/python/`, behind the `python` cargo feature.
 
 pub mod budget;
+pub mod cancel;
 pub mod detail;
 pub mod error;
 pub mod gauge;

@@ -125,10 +125,12 @@ pub fn knit_texture(
         ..params.clone()
     };
     let prepared = PreparedKnit::new(surface, pattern, &all)?;
-    run_in_pool(params.threads, || {
+    let image = run_in_pool(params.threads, || {
         let yarns = prepared.uv_centrelines(surface)?;
         Ok(render(&prepared, surface, &yarns, width, height))
-    })?
+    })??;
+    crate::cancel::check()?;
+    Ok(image)
 }
 
 /// Scene units per (u,v) unit along u and v.

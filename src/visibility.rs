@@ -235,6 +235,9 @@ fn mark_view(
     let winners: Vec<Vec<u32>> = tiles
         .par_iter()
         .map(|keys| {
+            if crate::cancel::requested() {
+                return Vec::new();
+            }
             let tile = (keys[0] >> 32) as usize;
             let (ox, oy) = ((tile % tiles_x) * TILE, (tile / tiles_x) * TILE);
             let mut depth = [f32::INFINITY; TILE * TILE];
@@ -358,6 +361,7 @@ pub fn seen_triangles(
     let grid = Grid::new(resolution, supersampling, margin);
     for view in views {
         mark_view(positions, triangles, view, &grid, &mut seen, budget_bytes)?;
+        crate::cancel::check()?;
     }
     Ok(seen)
 }

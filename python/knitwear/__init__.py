@@ -13,7 +13,8 @@ NumPy in, NumPy out, no Blender needed::
     result.vertices, result.triangles, result.colors  # (V,3) f32, (T,3) i32, (V,4) f32
 
 Lengths are in scene units (metres by default); the gauge is stitches and rows per 10 cm.
-Every error a user can cause is a :class:`KnitError`.
+Every error a user can cause is a :class:`KnitError`. Ctrl-C stops a long call (it raises
+`KeyboardInterrupt`), and :func:`cancel` stops every running call from another thread.
 """
 
 from typing import Any
@@ -21,6 +22,7 @@ from typing import Any
 from ._core import (
     BudgetError,
     Camera,
+    CancelledError,
     ColorPattern,
     GridSurface,
     InternalError,
@@ -36,6 +38,7 @@ from ._core import (
     PlushView,
     SurfaceError,
     __version__,
+    cancel,
     fractal_noise,
     knit_texture,
     measure_clearance,
@@ -61,6 +64,7 @@ def knit(surface: GridSurface | MeshSurface, pattern: Pattern, **settings: Any) 
 __all__ = [
     "BudgetError",
     "Camera",
+    "CancelledError",
     "ColorPattern",
     "GridSurface",
     "InternalError",
@@ -76,6 +80,7 @@ __all__ = [
     "PlushView",
     "SurfaceError",
     "__version__",
+    "cancel",
     "fractal_noise",
     "knit",
     "knit_texture",

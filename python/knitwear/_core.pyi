@@ -10,6 +10,7 @@ __version__: str
 __all__ = [
     "BudgetError",
     "Camera",
+    "CancelledError",
     "ColorPattern",
     "GridSurface",
     "InternalError",
@@ -26,6 +27,7 @@ __all__ = [
     "SurfaceError",
     "__version__",
     "_force_internal_error",
+    "cancel",
     "fractal_noise",
     "knit_texture",
     "measure_clearance",
@@ -48,6 +50,9 @@ class ParameterError(KnitError):
 
 class BudgetError(KnitError):
     """The output would exceed the memory budget; nothing was allocated."""
+
+class CancelledError(KnitError):
+    """The call was stopped by `cancel()` before it finished; nothing it made was kept."""
 
 class InternalError(KnitError):
     """A bug in knitwear (a caught panic). Please report it."""
@@ -417,6 +422,11 @@ def fractal_noise(
 ) -> npt.NDArray[np.float32]:
     """(height, width, 3) float32 fractal noise unit vectors (or with rgb=True the image
     (v + 1) / 2); size is an int or (width, height); scales=(1,) gives the base noise."""
+
+def cancel() -> None:
+    """Stops every knitwear call now running, from any thread (the add-on's Esc): each raises
+    `CancelledError` within a fraction of a second. Ctrl-C in the calling thread stops a
+    call the same way and raises `KeyboardInterrupt`."""
 
 def _force_internal_error() -> None:
     """Raises InternalError from a deliberate panic in the core (a test hook: no Rust panic

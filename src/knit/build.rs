@@ -108,6 +108,7 @@ impl PreparedKnit {
         let start = Instant::now();
         self.check_layout(surface)?;
         let mut out = run_in_pool(self.params.threads, || self.build_in_pool(surface))??;
+        crate::cancel::check()?;
         out.yarn_radius = self.radius;
         out.stats = KnitStats {
             seconds: start.elapsed().as_secs_f64(),
@@ -174,7 +175,9 @@ impl PreparedKnit {
                     }
                 }
             }
-        })
+        })?;
+        // A stopped call leaves the buffers half written: say so rather than return them.
+        crate::cancel::check()
     }
 
     /// Every span's vertex positions, before any culling of hidden yarn.
@@ -188,6 +191,9 @@ impl PreparedKnit {
                 .collect::<Vec<_>>(),
         );
         pos.into_par_iter().enumerate().for_each(|(k, positions)| {
+            if crate::cancel::requested() {
+                return;
+            }
             let mut bufs = PieceBuffers::positions_only(positions);
             self.bundle_span(k, centrelines, &mut bufs);
         });
@@ -212,7 +218,12 @@ impl PreparedKnit {
                 .zip(pts)
                 .zip(nrm)
                 .zip(own)
-                .map(|(((pc, a), b), o)| self.skeleton.sample(surface, &self.pattern, pc, a, b, o))
+                .map(|(((pc, a), b), o)| {
+                    if crate::cancel::requested() {
+                        return 0;
+                    }
+                    self.skeleton.sample(surface, &self.pattern, pc, a, b, o)
+                })
                 .sum();
         }
         c
@@ -302,6 +313,7 @@ impl PreparedKnit {
 
     pub(super) fn build_in_pool(&self, surface: &dyn Surface) -> Result<KnitOutput> {
         let centrelines = self.centrelines(surface);
+        crate::cancel::check()?;
         let mut out = match self.first_build.take_if_same(&centrelines) {
             Some(out) => out,
             None => self.bundles(&centrelines),
@@ -368,6 +380,9 @@ impl PreparedKnit {
             .enumerate()
             .for_each(
                 |(i, ((((positions, colors), corner_verts), corner_edges), edge_verts))| {
+                    if crate::cancel::requested() {
+                        return;
+                    }
                     let mut bufs = PieceBuffers {
                         vertex_base: vbase[i],
                         edge_base: ebase[i],

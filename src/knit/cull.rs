@@ -61,6 +61,8 @@ impl PreparedKnit {
             };
             Ok::<_, KnitError>((c, out, seen))
         })??;
+        // Nothing half made is kept for the first build.
+        crate::cancel::check()?;
         let subset = MeshSubset::new(
             &seen,
             &out.triangles,

@@ -160,6 +160,7 @@ impl PreparedKnit {
         let domain = surface.domain();
         let cyclic = (surface.cyclic_u(), cyclic_v);
         let base = Lattice::perturbed(domain, courses, wales, cyclic.0, cyclic.1, p.kappa, p.seed)?;
+        crate::cancel::check()?;
         // The mean stitch, which the default yarn follows.
         let mean = (
             len_u / wales as f32,
@@ -182,6 +183,7 @@ impl PreparedKnit {
                 let (rw, rh) = run_in_pool(p.threads, || {
                     crate::tight_stitches::tight_ratios(surface, &base)
                 })?;
+                crate::cancel::check()?;
                 (mean.0 * rw, mean.1 * rh)
             }
         };
@@ -207,6 +209,8 @@ impl PreparedKnit {
                 tension: p.tension,
             },
         );
+        // The tuning (the first knit of a pattern: seconds) stops early on request.
+        crate::cancel::check()?;
         let flat_clearance = skeleton.flat_clearance();
         let lattice = skeleton.lattice();
         // Floats of stranded colourwork follow a palette chart, not an image.
@@ -226,6 +230,7 @@ impl PreparedKnit {
             let count = built.iter().filter(|b| **b).count();
             (skeleton.pieces(&built, pattern, float_colors), built, count)
         })?;
+        crate::cancel::check()?;
         let triangles_full_detail: usize = full_pieces
             .iter()
             .map(|pc| bundle_counts(pc.sample_count(s), m, pc.closed).triangles)
@@ -264,6 +269,7 @@ impl PreparedKnit {
                 Ok((pieces, Some(levels), spans))
             })??,
         };
+        crate::cancel::check()?;
         let samples: Vec<usize> = pieces.iter().map(|pc| pc.sample_count(s)).collect();
         let piece_start: Vec<usize> = samples
             .iter()

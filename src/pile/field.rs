@@ -518,7 +518,9 @@ pub fn plush(surface: &dyn Surface, p: &PileParams, view: &View) -> Result<Plush
     let start = Instant::now();
     view.validate()?;
     let field = PileField::new(surface, p)?;
+    crate::cancel::check()?;
     let mut buffers = field.build(view, p.threads, p.budget_bytes)?;
+    crate::cancel::check()?;
     buffers.stats.seconds = start.elapsed().as_secs_f64();
     Ok(Plush { field, buffers })
 }

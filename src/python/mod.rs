@@ -42,6 +42,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("PatternError", py.get_type::<PatternError>())?;
     m.add("ParameterError", py.get_type::<ParameterError>())?;
     m.add("BudgetError", py.get_type::<BudgetError>())?;
+    m.add("CancelledError", py.get_type::<CancelledError>())?;
     m.add("InternalError", py.get_type::<InternalError>())?;
     m.add_class::<PyGridSurface>()?;
     m.add_class::<PyMeshSurface>()?;
@@ -52,6 +53,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(measure_clearance, m)?)?;
     m.add_function(wrap_pyfunction!(measure_cover, m)?)?;
     m.add_function(wrap_pyfunction!(_force_internal_error, m)?)?;
+    m.add_function(wrap_pyfunction!(cancel, m)?)?;
     pile::register(m)?;
     texture::register(m)?;
     settings::register(m)?;

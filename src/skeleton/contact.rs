@@ -399,6 +399,9 @@ fn relax(
     let better = |a: (f32, bool), b: (f32, bool)| (a.1, a.0) > (b.1, b.0);
     let mut best: ((f32, bool), Option<Vec<[f32; KEY_POINTS]>>) = (start_state, None);
     for _ in 0..ROUNDS {
+        if crate::cancel::requested() {
+            break;
+        }
         let current = offsets_with(&cells);
         let lines = patch.centrelines(pattern, &current, sampling);
         let yarns = polylines(&lines);

@@ -66,10 +66,11 @@ pub struct Tuned {
     pub crosses_right: bool,
 }
 
-/// One cell per key: a thread that asks for a key another thread is tuning waits for that
-/// result instead of tuning it again (the test suites knit the same pattern on several
-/// threads at once).
-type Cell = Arc<OnceLock<Tuned>>;
+/// One cell per key: a thread that asks for a key another thread is tuning waits (on the
+/// cell's lock) for that result instead of tuning it again (the test suites knit the same
+/// pattern on several threads at once). A tuning stopped on request ([`crate::cancel`]) is
+/// not stored: the next call tunes afresh.
+type Cell = Arc<Mutex<Option<Tuned>>>;
 
 fn cache() -> &'static Mutex<HashMap<Key, Cell>> {
     static CACHE: OnceLock<Mutex<HashMap<Key, Cell>>> = OnceLock::new();
@@ -146,7 +147,7 @@ fn straight(key: Key) -> NormalOffsets {
         Some(r) => base.with_relief(r),
         None => base,
     };
-    if let Ok(mut c) = cache.lock() {
+    if let (false, Ok(mut c)) = (crate::cancel::requested(), cache.lock()) {
         c.insert(key, o.clone());
     }
     o
@@ -192,7 +193,7 @@ pub fn offsets_with_straight_wales(
         Some(e) => offsets.with_edge_relief(e),
         None => offsets,
     };
-    if let Ok(mut c) = cache.lock() {
+    if let (false, Ok(mut c)) = (crate::cancel::requested(), cache.lock()) {
         c.insert(edge_key, offsets.clone());
     }
     offsets.scaled(diameter)
@@ -266,7 +267,17 @@ fn tuned(key: Key) -> Tuned {
         // A poisoned map (a panic elsewhere while it was held): tune without caching.
         Err(_) => return run(),
     };
-    cell.get_or_init(run).clone()
+    let Ok(mut slot) = cell.lock() else {
+        return run();
+    };
+    if let Some(t) = slot.as_ref() {
+        return t.clone();
+    }
+    let t = run();
+    if !crate::cancel::requested() {
+        *slot = Some(t.clone());
+    }
+    t
 }
 
 /// Clearance (min, p01) in diameters of `pattern` on a flat patch with unit yarn diameter.
@@ -462,7 +473,7 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
         });
         let (mut best, mut best_min) = score(&x);
         let mut step = 0.25f32;
-        while step >= 1.0 / 32.0 {
+        while step >= 1.0 / 32.0 && !crate::cancel::requested() {
             let mut improved = false;
             for i in 0..VARIABLES {
                 let (lo, hi, scale) = variable_bounds(i);
@@ -608,7 +619,7 @@ fn tune_shape(
     };
     let (mut best, mut best_min) = score(&offsets);
     let mut step = 0.25f32;
-    while step >= 1.0 / 16.0 {
+    while step >= 1.0 / 16.0 && !crate::cancel::requested() {
         let mut improved = false;
         for &i in free {
             for dir in [1.0f32, -1.0] {
