@@ -101,10 +101,12 @@ fn only_seen_triangles_are_built_and_they_are_the_whole_knits_own() {
         whole.stats.triangles_full_detail
     );
     // Close up (each stitch about 30 pixels, 16 samples a pixel) much of the yarn shows,
-    // but the backs of the strands and the loops behind the fabric do not.
+    // but the backs of the strands and the loops behind the fabric do not. The yarn is about
+    // 2.5 pixels thick here, near the 2 below which triangles are kept wherever a renderer's
+    // samples might catch them (visibility::MAY_SHOW_PX): about 84% are kept.
     assert!(
-        t * 5 < w * 4 && t * 5 > w,
-        "{t} of {w} triangles seen: a fifth or more of a knit hides behind itself, not all"
+        t * 10 < w * 9 && t * 5 > w,
+        "{t} of {w} triangles seen: a tenth or more of a knit hides behind itself, not all"
     );
     assert_eq!(out.triangles.len(), 3 * t);
     assert_eq!(out.positions.len(), 3 * culled.vertex_count());

@@ -57,6 +57,7 @@ impl PreparedKnit {
                     d.hidden_supersampling,
                     d.frustum_margin,
                     self.params.budget_bytes,
+                    self.radius,
                 )?,
             };
             Ok::<_, KnitError>((c, out, seen))

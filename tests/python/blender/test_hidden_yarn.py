@@ -16,9 +16,11 @@ from PIL import Image
 sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "scripts"))
 from chart_speed_accuracy import ssim as _ssim  # noqa: E402
 
-#: Workbench renders of the strip: small, one sample a pixel (no anti-aliasing), so the
-#: image is exactly the nearest triangle at each pixel centre.
-RES = (480, 270)
+#: Workbench renders of the strip: one sample a pixel (no anti-aliasing), so the image is
+#: exactly the nearest triangle at each pixel centre. Full HD: at a few hundred pixels the
+#: yarn is about a pixel thick and culling may drop only what lies under solid yarn (see
+#: `test_culling_does_not_thin_out_a_small_render`), so there is little to compare.
+RES = (1920, 1080)
 
 
 def _render(path: Path) -> np.ndarray:
@@ -61,7 +63,8 @@ def test_only_the_seen_yarn_is_built_and_the_render_does_not_change(
     after = _render(tmp_path / "culled.png")
     assert culled.levels == whole.levels
     assert culled.triangles + culled.triangles_hidden == whole.triangles
-    assert culled.triangles_hidden > 0.6 * whole.triangles, (culled.triangles, whole.triangles)
+    # About 20%: the back of the yarn and of the fabric where solid yarn covers it.
+    assert culled.triangles_hidden > 0.15 * whole.triangles, (culled.triangles, whole.triangles)
     assert len(culled.object.data.polygons) == culled.triangles
     # Every pixel shows the same triangle, shaded the same: the culled mesh carries the
     # whole knit's smooth normals as custom normals.
@@ -138,4 +141,41 @@ def test_a_camera_below_keeps_the_back_of_the_fabric(api: ModuleType) -> None:
     # At this grazing angle both see the yarn's silhouettes, but a good part of what the
     # view from below keeps (the back of the fabric) the view from above drops.
     only_back = int((back_seen & (1 - front_seen)).sum())
-    assert only_back > 0.25 * back.triangles, (only_back, back.triangles)
+    assert only_back > 0.2 * back.triangles, (only_back, back.triangles)
+
+
+def _coverage(path: Path, aa: str) -> np.ndarray:
+    """Per-pixel coverage (alpha) of a Workbench render over a transparent film."""
+    scene = bpy.context.scene
+    scene.render.engine = "BLENDER_WORKBENCH"
+    scene.render.film_transparent = True
+    scene.display.render_aa = aa
+    scene.render.image_settings.file_format = "PNG"
+    scene.render.image_settings.color_mode = "RGBA"
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True)
+    return np.asarray(Image.open(path).convert("RGBA"), dtype=np.float64)[..., 3] / 255.0
+
+
+def test_culling_does_not_thin_out_a_small_render(api: ModuleType, tmp_path: Path) -> None:
+    """Issue 18: at 320 x 240 the strip's yarn is under a pixel thick, between the culling
+    pass's samples; a renderer that samples elsewhere in the pixel (8x anti-aliasing) saw 43%
+    of it missing. Culled at the add-on's defaults, the knit covers the same pixels as the
+    whole knit, whatever the anti-aliasing."""
+    source = _scene()
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y = 320, 240
+    # Every stitch at full detail: what differs is the culling alone.
+    settings = {**STRIP, "detail_full_px": 0.0, "detail_mid_px": 0.0, "detail_texture_px": 0.0}
+    whole = api.knit(source, cull_hidden=False, **settings)
+    culled = api.knit(source, **settings)
+    assert culled.triangles_hidden > 0
+    for aa in ("8", "FXAA"):
+        culled.object.hide_render, whole.object.hide_render = True, False
+        full = _coverage(tmp_path / f"whole-{aa}.png", aa)
+        culled.object.hide_render, whole.object.hide_render = False, True
+        thin = _coverage(tmp_path / f"culled-{aa}.png", aa)
+        assert full.sum() > 2000, full.sum()  # the strip is in view
+        differ = np.abs(full - thin) > 2 / 255
+        assert differ.mean() < 0.005, (aa, differ.mean(), full.sum(), thin.sum())
+        assert abs(full.sum() - thin.sum()) < 0.01 * full.sum(), (aa, full.sum(), thin.sum())
