@@ -409,25 +409,35 @@ fn rasterise(
     }
 }
 
-/// One flag per triangle: whether any of `views` sees it, sampled `supersampling x
-/// supersampling` times per pixel of `resolution` over the frame widened by `margin` (a
-/// fraction of the half-frame, as [`crate::detail::DetailParams::frustum_margin`]; negative:
-/// none). The pass's own buffers stay within `budget_bytes` or it is a
-/// [`KnitError::Budget`]. `yarn_radius` (object space) says where the yarn is too thin for
-/// the samples to be trusted. `positions` `(V, 3)` and `triangles` `(T, 3)` as [`crate::knit::KnitOutput`]
-/// holds them, in the views' object space. Runs in the caller's rayon pool.
+/// How the hidden-yarn pass samples a view, and what bounds it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VisibilityPass {
+    /// Render resolution, pixels (width, height).
+    pub resolution: (u32, u32),
+    /// Samples per pixel side.
+    pub supersampling: u32,
+    /// The frame widened by this fraction of the half-frame on every side (negative: none).
+    pub margin: f32,
+    /// The pass's own buffers stay within this, or it is a [`KnitError::Budget`].
+    pub budget_bytes: u64,
+    /// The yarn's radius (object space): where it is under [`MAY_SHOW_PX`] pixels thick the
+    /// samples cannot be trusted to catch it.
+    pub yarn_radius: f32,
+}
+
+/// One flag per triangle: whether any of `views` sees it, sampled as `pass` says (the
+/// margin is a fraction of the half-frame, as
+/// [`crate::detail::DetailParams::frustum_margin`]). `positions` `(V, 3)` and `triangles`
+/// `(T, 3)` as [`crate::knit::KnitOutput`] holds them, in the views' object space. Runs in
+/// the caller's rayon pool.
 pub fn seen_triangles(
     positions: &[f32],
     triangles: &[i32],
     views: &[CameraView],
-    resolution: (u32, u32),
-    supersampling: u32,
-    margin: f32,
-    budget_bytes: u64,
-    yarn_radius: f32,
+    pass: &VisibilityPass,
 ) -> Result<Vec<bool>> {
     let mut seen = vec![false; triangles.len() / 3];
-    let grid = Grid::new(resolution, supersampling, margin);
+    let grid = Grid::new(pass.resolution, pass.supersampling, pass.margin);
     for view in views {
         mark_view(
             positions,
@@ -435,8 +445,8 @@ pub fn seen_triangles(
             view,
             &grid,
             &mut seen,
-            budget_bytes,
-            yarn_radius,
+            pass.budget_bytes,
+            pass.yarn_radius,
         )?;
         crate::cancel::check()?;
     }
@@ -447,6 +457,16 @@ pub fn seen_triangles(
 mod tests {
     use super::*;
     use glam::{Vec3, Vec4};
+
+    fn pass(resolution: (u32, u32), supersampling: u32, margin: f32) -> VisibilityPass {
+        VisibilityPass {
+            resolution,
+            supersampling,
+            margin,
+            budget_bytes: u64::MAX,
+            yarn_radius: 0.0,
+        }
+    }
 
     /// A 90-degree perspective camera at the origin looking down -z (OpenGL conventions).
     fn perspective(near: f32, far: f32) -> Mat4 {
@@ -487,14 +507,14 @@ mod tests {
     #[test]
     fn a_square_behind_a_larger_one_is_not_seen() {
         let (p, t) = scene(&[(0.0, -0.5, 0.5), (0.5, -0.8, 0.8)]);
-        let seen = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, -1.0, u64::MAX, 0.0).unwrap();
+        let seen = seen_triangles(&p, &t, &[ortho()], &pass((32, 32), 2, -1.0)).unwrap();
         assert_eq!(seen, vec![false, false, true, true]);
     }
 
     #[test]
     fn a_square_in_front_is_seen_and_so_is_what_shows_around_it() {
         let (p, t) = scene(&[(0.0, -0.8, 0.8), (0.5, -0.5, 0.5)]);
-        let seen = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, -1.0, u64::MAX, 0.0).unwrap();
+        let seen = seen_triangles(&p, &t, &[ortho()], &pass((32, 32), 2, -1.0)).unwrap();
         assert_eq!(seen, vec![true, true, true, true]);
     }
 
@@ -506,9 +526,8 @@ mod tests {
             clip_from_object: Mat4::from_scale(Vec3::new(1.0, -1.0, 1.0)),
             eye: Vec4::new(0.0, 0.0, -1.0, 0.0),
         };
-        let once = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, -1.0, u64::MAX, 0.0).unwrap();
-        let both =
-            seen_triangles(&p, &t, &[ortho(), below], (32, 32), 2, -1.0, u64::MAX, 0.0).unwrap();
+        let once = seen_triangles(&p, &t, &[ortho()], &pass((32, 32), 2, -1.0)).unwrap();
+        let both = seen_triangles(&p, &t, &[ortho(), below], &pass((32, 32), 2, -1.0)).unwrap();
         assert_eq!(once, vec![false, false, true, true]);
         assert_eq!(both, vec![true, true, true, true]);
     }
@@ -517,8 +536,8 @@ mod tests {
     fn the_margin_keeps_what_lies_just_outside_the_frame() {
         // A square beyond the right edge of the frame, within a 0.5 margin.
         let (p, t) = scene(&[(0.0, 1.1, 1.3)]);
-        let none = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, 0.0, u64::MAX, 0.0).unwrap();
-        let margin = seen_triangles(&p, &t, &[ortho()], (32, 32), 2, 0.5, u64::MAX, 0.0).unwrap();
+        let none = seen_triangles(&p, &t, &[ortho()], &pass((32, 32), 2, 0.0)).unwrap();
+        let margin = seen_triangles(&p, &t, &[ortho()], &pass((32, 32), 2, 0.5)).unwrap();
         assert_eq!(none, vec![false, false]);
         assert_eq!(margin, vec![true, true]);
     }
@@ -530,7 +549,7 @@ mod tests {
         let p = vec![0.001, 0.001, 0.0, 0.002, 0.001, 0.0, 0.001, 0.002, 0.0];
         let t = vec![0, 1, 2];
         assert_eq!(
-            seen_triangles(&p, &t, &[ortho()], (4, 4), 1, -1.0, u64::MAX, 0.0).unwrap(),
+            seen_triangles(&p, &t, &[ortho()], &pass((4, 4), 1, -1.0)).unwrap(),
             vec![true]
         );
         // ...unless something nearer covers every sample round it.
@@ -538,7 +557,7 @@ mod tests {
         front.extend(&p);
         ft.extend([4, 5, 6]);
         assert_eq!(
-            seen_triangles(&front, &ft, &[ortho()], (4, 4), 1, -1.0, u64::MAX, 0.0).unwrap(),
+            seen_triangles(&front, &ft, &[ortho()], &pass((4, 4), 1, -1.0)).unwrap(),
             vec![true, true, false]
         );
         let persp = CameraView {
@@ -548,19 +567,19 @@ mod tests {
         // One corner behind the eye: not rasterised, kept.
         let p = vec![0.0, 0.0, -1.0, 0.1, 0.0, -1.0, 0.0, 0.0, 1.0];
         assert_eq!(
-            seen_triangles(&p, &t, &[persp], (8, 8), 1, -1.0, u64::MAX, 0.0).unwrap(),
+            seen_triangles(&p, &t, &[persp], &pass((8, 8), 1, -1.0)).unwrap(),
             vec![true]
         );
         // All behind: never seen.
         let p = vec![0.0, 0.0, 1.0, 0.1, 0.0, 1.0, 0.0, 0.1, 1.0];
         assert_eq!(
-            seen_triangles(&p, &t, &[persp], (8, 8), 1, -1.0, u64::MAX, 0.0).unwrap(),
+            seen_triangles(&p, &t, &[persp], &pass((8, 8), 1, -1.0)).unwrap(),
             vec![false]
         );
         // A NaN corner: kept (the view cannot say).
         let p = vec![f32::NAN, 0.0, -1.0, 0.1, 0.0, -1.0, 0.0, 0.1, -1.0];
         assert_eq!(
-            seen_triangles(&p, &t, &[persp], (8, 8), 1, -1.0, u64::MAX, 0.0).unwrap(),
+            seen_triangles(&p, &t, &[persp], &pass((8, 8), 1, -1.0)).unwrap(),
             vec![true]
         );
     }
@@ -578,7 +597,7 @@ mod tests {
         let (p, t) = scene(&squares);
         let run = |n| {
             crate::parallel::run_in_pool(Some(n), || {
-                seen_triangles(&p, &t, &[ortho()], (200, 150), 2, 0.1, u64::MAX, 0.0).unwrap()
+                seen_triangles(&p, &t, &[ortho()], &pass((200, 150), 2, 0.1)).unwrap()
             })
             .unwrap()
         };

@@ -7,7 +7,7 @@ use crate::error::{KnitError, Result};
 use crate::geometry::{MeshSubset, VertexCorners};
 use crate::parallel::run_in_pool;
 use crate::surface::Surface;
-use crate::visibility::seen_triangles;
+use crate::visibility::{seen_triangles, VisibilityPass};
 
 /// Packs one flag per triangle into bits, triangle `i` at bit `i % 8` of byte `i / 8`.
 pub(super) fn pack_bits(flags: &[bool]) -> Vec<u8> {
@@ -53,11 +53,13 @@ impl PreparedKnit {
                     &out.positions,
                     &out.triangles,
                     &d.views,
-                    d.resolution,
-                    d.hidden_supersampling,
-                    d.frustum_margin,
-                    self.params.budget_bytes,
-                    self.radius,
+                    &VisibilityPass {
+                        resolution: d.resolution,
+                        supersampling: d.hidden_supersampling,
+                        margin: d.frustum_margin,
+                        budget_bytes: self.params.budget_bytes,
+                        yarn_radius: self.radius,
+                    },
                 )?,
             };
             Ok::<_, KnitError>((c, out, seen))
