@@ -191,7 +191,10 @@ impl PreparedKnit {
         let radius = p
             .yarn_radius
             .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * yarn_width / widened);
-        let (check_w, check_h) = p.stitch_size.unwrap_or(mean);
+        // Against the mean stitch, pinned size or not: a knit rebuilt with its pinned
+        // (tuned, tightest) stitch size must pass the check its first knit passed. On a
+        // sphere the tightest stitches, at the poles, are a fraction of the mean.
+        let (check_w, check_h) = mean;
         if 2.0 * radius > check_w.min(2.0 * check_h) {
             return Err(KnitError::Parameter(format!(
                 "the yarn ({:.4} thick) is thicker than a stitch ({check_w:.4} x \

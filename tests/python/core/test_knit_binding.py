@@ -98,3 +98,33 @@ def test_a_surface_with_another_layout_is_a_surface_error() -> None:
         bound.build(mesh)
     with pytest.raises(knitwear.SurfaceError):
         bound.positions(mesh)
+
+
+def sphere(radius: float = 0.1, n: int = 48) -> knitwear.GridSurface:
+    """A UV sphere as a NURBS sphere samples: u round the equator (cyclic), v pole to pole."""
+    u = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
+    v = np.linspace(0.0, np.pi, n)
+    uu, vv = np.meshgrid(u, v)
+    nrm = np.stack(
+        [np.sin(vv) * np.cos(uu), np.sin(vv) * np.sin(uu), -np.cos(vv)], axis=-1
+    ).astype(np.float32)
+    return knitwear.GridSurface((radius * nrm).astype(np.float32), nrm, cyclic_u=True)
+
+
+def test_a_sphere_rebuilt_with_its_pinned_sizes_is_not_refused() -> None:
+    """Issue 18: a knitted NURBS sphere stopped following on the next frame ("the yarn is
+    thicker than a stitch"): the rebuild checked the yarn against its pinned stitch size, the
+    tightest stitches' (at the poles), where the first knit checked it against the mean."""
+    s = sphere()
+    first = knitwear.Knit(s, knitwear.Pattern.preset("stockinette"), gauge=(22.0, 30.0))
+    assert first.stitch_size[0] < 2 * first.yarn_radius  # the poles' stitches are tiny
+    courses, wales = first.counts
+    again = knitwear.Knit(
+        s,
+        knitwear.Pattern.preset("stockinette"),
+        courses=courses,
+        wales=wales,
+        yarn_radius=first.yarn_radius,
+        stitch_size=first.stitch_size,
+    )
+    assert np.array_equal(again.build(s).vertices, first.build(s).vertices)
