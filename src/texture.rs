@@ -118,6 +118,19 @@ pub fn knit_texture(
             params.budget_bytes >> 20
         )));
     }
+    // Taken before the knit is prepared, and fallibly: a memory limit (ulimit -v, a farm's
+    // cgroup) refuses the image here instead of aborting the process.
+    let mut pixels: Vec<f32> = Vec::new();
+    pixels
+        .try_reserve_exact(width * height * 4)
+        .map_err(|_| {
+            KnitError::Budget(format!(
+                "the system could not give the {} MiB a {width} x {height} texture needs: use \
+                 a smaller image",
+                bytes >> 20
+            ))
+        })?;
+    pixels.resize(width * height * 4, 0.0);
     // The texture draws every stitch: camera-driven detail (which leaves distant stitches to
     // this very texture) does not apply.
     let all = KnitParams {
@@ -127,7 +140,7 @@ pub fn knit_texture(
     let prepared = PreparedKnit::new(surface, pattern, &all)?;
     let image = run_in_pool(params.threads, || {
         let yarns = prepared.uv_centrelines(surface)?;
-        Ok(render(&prepared, surface, &yarns, width, height))
+        Ok(render(&prepared, surface, &yarns, width, height, pixels))
     })??;
     crate::cancel::check()?;
     Ok(image)
@@ -192,12 +205,14 @@ fn segments(prepared: &PreparedKnit, yarns: &[UvYarn]) -> Vec<Segment> {
     per_yarn.concat()
 }
 
+/// Every pixel of the image into `pixels` (`width * height * 4` zeros, taken by the caller).
 fn render(
     prepared: &PreparedKnit,
     surface: &dyn Surface,
     yarns: &[UvYarn],
     width: usize,
     height: usize,
+    mut pixels: Vec<f32>,
 ) -> TextureImage {
     let radius = prepared.yarn_radius();
     let extent = prepared.domain().size() * fabric_scale(prepared);
@@ -264,7 +279,6 @@ fn render(
         }
     }
 
-    let mut pixels = vec![0.0f32; width * height * 4];
     pixels
         .par_chunks_mut(4 * width)
         .enumerate()

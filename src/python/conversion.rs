@@ -250,3 +250,48 @@ pub(crate) fn int_pair_arg(obj: &Bound<'_, PyAny>) -> PyResult<(i128, i128)> {
         .map_err(|_| ParameterError::new_err("expected a pair of integers (width, height)"))?;
     Ok((int_arg(&a)?, int_arg(&b)?))
 }
+
+/// `obj` as `T`, any value that is not of that shape (a wrong type, a tuple of the wrong
+/// length, an integer beyond 64 bits) a [`ParameterError`] that names the setting and the
+/// shape it takes, rather than the `TypeError`, `ValueError` or `OverflowError` pyo3 raises
+/// on its own.
+pub(crate) fn shaped_arg<T>(obj: &Bound<'_, PyAny>, name: &str, shape: &str) -> PyResult<T>
+where
+    T: for<'a, 'py> FromPyObject<'a, 'py>,
+{
+    obj.extract::<T>().map_err(|_| {
+        let given = obj.repr().map(|r| r.to_string()).unwrap_or_default();
+        let given: String = given.chars().take(80).collect();
+        ParameterError::new_err(format!("{name} must be {shape}, not {given}"))
+    })
+}
+
+/// [`shaped_arg`] for an optional setting (`None` stays `None`).
+pub(crate) fn opt_shaped_arg<T>(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    shape: &str,
+) -> PyResult<Option<T>>
+where
+    T: for<'a, 'py> FromPyObject<'a, 'py>,
+{
+    if obj.is_none() {
+        Ok(None)
+    } else {
+        shaped_arg(obj, name, shape).map(Some)
+    }
+}
+
+/// `gauge=(stitches, rows)` per 10 cm, for `#[pyo3(from_py_with)]`.
+pub(crate) fn gauge_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<(f32, f32)>> {
+    opt_shaped_arg(obj, "gauge", "(stitches, rows) per 10 cm: two numbers")
+}
+
+/// `stitch_size=(width, height)` of one stitch, for `#[pyo3(from_py_with)]`.
+pub(crate) fn stitch_size_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<(f32, f32)>> {
+    opt_shaped_arg(
+        obj,
+        "stitch_size",
+        "(width, height) of a stitch: two numbers",
+    )
+}

@@ -133,6 +133,38 @@ fn pinned_levels(obj: &Bound<'_, PyAny>) -> PyResult<Vec<Level>> {
         .collect()
 }
 
+pub(super) fn detail_px_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<(f32, f32, f32)>> {
+    super::opt_shaped_arg(
+        obj,
+        "detail_px",
+        "(full, mid, texture) pixels: three numbers",
+    )
+}
+
+pub(super) fn mid_quality_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<(i64, i64, bool)>> {
+    super::opt_shaped_arg(
+        obj,
+        "mid_quality",
+        "(samples_per_loop, ring_segments, fluff): two integers and a bool",
+    )
+}
+
+pub(super) fn far_quality_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<(i64, i64, bool)>> {
+    super::opt_shaped_arg(
+        obj,
+        "far_quality",
+        "(samples_per_loop, ring_segments, fluff): two integers and a bool",
+    )
+}
+
+pub(super) fn seen_triangles_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<Vec<u8>>> {
+    super::opt_shaped_arg(
+        obj,
+        "seen_triangles",
+        "bytes (KnitResult.seen_triangles of an earlier knit)",
+    )
+}
+
 /// The core's detail settings from `Knit`'s keywords; `None` without a camera or pinned
 /// levels.
 #[allow(clippy::too_many_arguments)]

@@ -52,6 +52,10 @@ pub(crate) fn measure_clearance(
 }
 
 /// Optical cover of a knit result (docs/design.md section 7): the fraction of the rectangle
+fn bounds_arg(obj: &Bound<'_, PyAny>) -> PyResult<(f32, f32, f32, f32)> {
+    shaped_arg(obj, "bounds", "(x_min, y_min, x_max, y_max): four numbers")
+}
+
 /// `bounds = (x_min, y_min, x_max, y_max)` (object space) hidden by the yarn's tubes (no
 /// fluff) in an orthographic view along z, sampled on `resolution` x `resolution` pixels.
 #[pyfunction]
@@ -59,7 +63,7 @@ pub(crate) fn measure_clearance(
 pub(crate) fn measure_cover(
     py: Python<'_>,
     result: &Bound<'_, PyKnitResult>,
-    bounds: (f32, f32, f32, f32),
+    #[pyo3(from_py_with = bounds_arg)] bounds: (f32, f32, f32, f32),
     #[pyo3(from_py_with = int_arg)] resolution: i128,
 ) -> PyResult<f64> {
     let (v, ranges, radius) = result_centreline(py, result)?;

@@ -17,8 +17,8 @@ pub struct PyPattern {
 /// Largest pattern file read: a 256 x 1024 chart with its legend is about 270 KB.
 const MAX_PATTERN_FILE_BYTES: u64 = 4 << 20;
 
-/// The text of a pattern file, refusing a directory, a device that never ends (`/dev/zero`)
-/// or a file too large to be a pattern before reading it all.
+/// The text of a pattern file, refusing a directory, a named pipe, a device that never ends
+/// (`/dev/zero`) or a file too large to be a pattern before reading it all.
 fn read_pattern_file(path: &std::path::Path) -> Result<String, KnitError> {
     use std::io::Read;
     let cannot = |why: String| {
@@ -27,10 +27,24 @@ fn read_pattern_file(path: &std::path::Path) -> Result<String, KnitError> {
             path.display()
         ))
     };
-    let file = std::fs::File::open(path).map_err(|e| cannot(e.to_string()))?;
-    if file.metadata().is_ok_and(|m| m.is_dir()) {
+    // Looked at before opening: opening a named pipe for reading waits for a writer, which
+    // may never come.
+    let kind = std::fs::metadata(path)
+        .map_err(|e| cannot(e.to_string()))?
+        .file_type();
+    if kind.is_dir() {
         return Err(cannot("it is a folder, not a file".into()));
     }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() || kind.is_socket() {
+            return Err(cannot(
+                "it is a pipe or a socket, not a file: save the pattern to a file".into(),
+            ));
+        }
+    }
+    let file = std::fs::File::open(path).map_err(|e| cannot(e.to_string()))?;
     let mut bytes = Vec::new();
     file.take(MAX_PATTERN_FILE_BYTES + 1)
         .read_to_end(&mut bytes)

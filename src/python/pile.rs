@@ -11,8 +11,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use super::{
-    budget_arg, count_arg, flat, guarded, int_arg, opt_int_arg, rows, seed_arg, to_py, AnySurface,
-    InternalError, ParameterError, PyColorPattern, PyGridSurface, PyMeshSurface, SurfaceError,
+    budget_arg, count_arg, flat, gauge_arg, guarded, int_arg, opt_int_arg, opt_shaped_arg, rows,
+    seed_arg, to_py, AnySurface, InternalError, ParameterError, PyColorPattern, PyGridSurface,
+    PyMeshSurface, SurfaceError,
 };
 use crate::pattern::ColorImage;
 use crate::pile::fractal_noise::{fractal_noise as core_noise, NoiseParams};
@@ -52,6 +53,39 @@ fn vec3(name: &str, v: Option<Vec<f32>>) -> PyResult<Option<Vec3>> {
             c.len()
         ))),
     }
+}
+
+/// `eye` (perspective) or `view_dir` (orthographic), or neither (seen along each normal).
+fn lean_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<Vec<f32>>> {
+    opt_shaped_arg(
+        obj,
+        "lean",
+        "(angle, azimuth) in radians or a direction (x, y, z)",
+    )
+}
+
+fn eye_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<Vec<f32>>> {
+    opt_shaped_arg(obj, "eye", "a position (x, y, z)")
+}
+
+fn view_dir_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<Vec<f32>>> {
+    opt_shaped_arg(obj, "view_dir", "a direction (x, y, z)")
+}
+
+fn noise_scales_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<Vec<i64>>> {
+    opt_shaped_arg(
+        obj,
+        "noise_scales",
+        "a sequence of integers such as (1, 2, 4, 8)",
+    )
+}
+
+fn scales_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<Vec<i64>>> {
+    opt_shaped_arg(obj, "scales", "a sequence of integers such as (1, 2, 4, 8)")
+}
+
+fn noise_size_arg(obj: &Bound<'_, PyAny>) -> PyResult<Option<(i64, i64)>> {
+    opt_shaped_arg(obj, "noise_size", "(width, height): two integers")
 }
 
 /// `eye` (perspective) or `view_dir` (orthographic), or neither (seen along each normal).
@@ -177,8 +211,8 @@ impl PyPlushField {
     fn view(
         &self,
         py: Python<'_>,
-        eye: Option<Vec<f32>>,
-        view_dir: Option<Vec<f32>>,
+        #[pyo3(from_py_with = eye_arg)] eye: Option<Vec<f32>>,
+        #[pyo3(from_py_with = view_dir_arg)] view_dir: Option<Vec<f32>>,
         #[pyo3(from_py_with = opt_int_arg)] threads: Option<i128>,
     ) -> PyResult<PyPlushView> {
         let view = view_of(eye, view_dir)?;
@@ -201,8 +235,8 @@ impl PyPlushField {
     #[pyo3(signature = (*, eye=None, view_dir=None, threads=None, budget_bytes=None))]
     fn build(
         slf: &Bound<'_, Self>,
-        eye: Option<Vec<f32>>,
-        view_dir: Option<Vec<f32>>,
+        #[pyo3(from_py_with = eye_arg)] eye: Option<Vec<f32>>,
+        #[pyo3(from_py_with = view_dir_arg)] view_dir: Option<Vec<f32>>,
         #[pyo3(from_py_with = opt_int_arg)] threads: Option<i128>,
         #[pyo3(from_py_with = opt_int_arg)] budget_bytes: Option<i128>,
     ) -> PyResult<PyPlushResult> {
@@ -338,18 +372,18 @@ fn plush(
     surface: &Bound<'_, PyAny>,
     #[pyo3(from_py_with = opt_int_arg)] courses: Option<i128>,
     #[pyo3(from_py_with = opt_int_arg)] wales: Option<i128>,
-    gauge: Option<(f32, f32)>,
+    #[pyo3(from_py_with = gauge_arg)] gauge: Option<(f32, f32)>,
     #[pyo3(from_py_with = int_arg)] piles_per_stitch: i128,
     pile_length: Option<f32>,
     pile_radius: Option<f32>,
     #[pyo3(from_py_with = int_arg)] slices: i128,
-    lean: Option<Vec<f32>>,
+    #[pyo3(from_py_with = lean_arg)] lean: Option<Vec<f32>>,
     theta_max: Option<f32>,
-    noise_scales: Option<Vec<i64>>,
-    noise_size: Option<(i64, i64)>,
+    #[pyo3(from_py_with = noise_scales_arg)] noise_scales: Option<Vec<i64>>,
+    #[pyo3(from_py_with = noise_size_arg)] noise_size: Option<(i64, i64)>,
     #[pyo3(from_py_with = int_arg)] seed: i128,
-    eye: Option<Vec<f32>>,
-    view_dir: Option<Vec<f32>>,
+    #[pyo3(from_py_with = eye_arg)] eye: Option<Vec<f32>>,
+    #[pyo3(from_py_with = view_dir_arg)] view_dir: Option<Vec<f32>>,
     colors: Option<&Bound<'_, PyAny>>,
     color_image: Option<&Bound<'_, PyAny>>,
     press: Option<&Bound<'_, PyAny>>,
@@ -447,7 +481,7 @@ fn fractal_noise(
     py: Python<'_>,
     size: &Bound<'_, PyAny>,
     theta_max: Option<f32>,
-    scales: Option<Vec<i64>>,
+    #[pyo3(from_py_with = scales_arg)] scales: Option<Vec<i64>>,
     #[pyo3(from_py_with = int_arg)] seed: i128,
     rgb: bool,
     #[pyo3(from_py_with = opt_int_arg)] threads: Option<i128>,

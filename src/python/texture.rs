@@ -7,8 +7,8 @@ use numpy::IntoPyArray;
 use pyo3::prelude::*;
 
 use super::{
-    count_arg, guarded, int_arg, opt_int_arg, params_from, AnySurface, InternalError,
-    PyColorPattern, PyPattern,
+    count_arg, gauge_arg, guarded, int_arg, opt_int_arg, params_from, stitch_size_arg, AnySurface,
+    InternalError, PyColorPattern, PyPattern,
 };
 use crate::texture::knit_texture as core_texture;
 
@@ -31,9 +31,9 @@ fn knit_texture(
     #[pyo3(from_py_with = int_arg)] height: i128,
     #[pyo3(from_py_with = opt_int_arg)] courses: Option<i128>,
     #[pyo3(from_py_with = opt_int_arg)] wales: Option<i128>,
-    gauge: Option<(f32, f32)>,
+    #[pyo3(from_py_with = gauge_arg)] gauge: Option<(f32, f32)>,
     yarn_radius: Option<f32>,
-    stitch_size: Option<(f32, f32)>,
+    #[pyo3(from_py_with = stitch_size_arg)] stitch_size: Option<(f32, f32)>,
     fluffiness: f32,
     #[pyo3(from_py_with = int_arg)] ring_segments: i128,
     #[pyo3(from_py_with = int_arg)] plies: i128,

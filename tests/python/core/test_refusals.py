@@ -4,6 +4,7 @@ range, before anything large is allocated: never an abort, a segfault, a hang or
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import knitwear
@@ -138,6 +139,38 @@ def test_an_integer_setting_given_a_float_is_a_parameter_error() -> None:
         knitwear.knit(sheet(), STOCKINETTE, courses=8.5)  # type: ignore[arg-type]
 
 
+@pytest.mark.parametrize(
+    ("keyword", "value"),
+    [
+        ("gauge", (20.0, 28.0, 1.0)),
+        ("gauge", "20x28"),
+        ("stitch_size", (0.004,)),
+        ("detail_px", (1.0, 2.0)),
+        ("mid_quality", (2**70, 4, True)),
+        ("far_quality", (6, 3)),
+    ],
+)
+def test_tuple_settings_of_the_wrong_shape_name_themselves(keyword: str, value: object) -> None:
+    with pytest.raises(knitwear.ParameterError, match=keyword):
+        knitwear.Knit(sheet(), STOCKINETTE, **{"courses": 8, "wales": 8, keyword: value})
+
+
+def test_plush_and_measure_tuple_arguments_of_the_wrong_shape() -> None:
+    for keyword, value in (
+        ("noise_scales", [1, 2**64]),
+        ("noise_size", (8, 8, 8)),
+        ("lean", "up"),
+        ("eye", [0.0, "a", 1.0]),
+    ):
+        with pytest.raises(knitwear.ParameterError, match=keyword):
+            knitwear.plush(sheet(), courses=4, wales=4, **{keyword: value})
+    with pytest.raises(knitwear.ParameterError, match="scales"):
+        knitwear.fractal_noise(8, scales=[2**63])
+    r = knitwear.knit(sheet(), STOCKINETTE, courses=4, wales=4)
+    with pytest.raises(knitwear.ParameterError, match="bounds"):
+        knitwear.measure_cover(r, (0.0, 0.0, 1.0))
+
+
 def test_other_integer_arguments_out_of_range() -> None:
     with pytest.raises(knitwear.ParameterError, match="rows_each"):
         knitwear.ColorPattern.stripes([[1, 0, 0], [0, 0, 1]], rows_each=-2)
@@ -224,3 +257,10 @@ def test_a_stitch_larger_than_the_surface_is_refused() -> None:
 def test_a_pile_longer_than_the_fabric_is_refused() -> None:
     with pytest.raises(knitwear.ParameterError, match="pile_length"):
         knitwear.plush(sheet(), courses=8, wales=8, pile_length=1e30)
+
+
+def test_a_named_pipe_is_refused_without_waiting_for_a_writer(tmp_path: Path) -> None:
+    fifo = tmp_path / "pattern.ks"
+    os.mkfifo(fifo)
+    with pytest.raises(knitwear.PatternError, match="pipe"):
+        knitwear.Pattern.from_file(fifo)
