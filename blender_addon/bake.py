@@ -11,6 +11,8 @@ frame, float32 sample rate (1 = one sample per frame), int32 samples; then sampl
 float32 positions in the object's space.
 """
 
+import errno
+import os
 import struct
 from pathlib import Path
 from typing import BinaryIO
@@ -53,6 +55,23 @@ def _cache_path(obj: bpy.types.Object, filepath: str) -> tuple[str, Path]:
     return stored, Path(bpy.path.abspath(stored))
 
 
+def _partial_path(path: Path) -> Path:
+    """The file beside ``path`` a bake writes and then moves over it, so that a failed bake
+    leaves an earlier cache (and its modifier) as they were. Raises `OSError` where ``path``
+    cannot be a file."""
+    if path.is_dir():
+        raise IsADirectoryError(errno.EISDIR, "it is a folder: give a file path", str(path))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    return path.with_name(f".{path.name}.{os.getpid()}.partial")
+
+
+def _write_error(path: Path, err: OSError) -> knitwear.KnitError:
+    where = f" ('{err.filename}')" if err.filename and str(err.filename) != str(path) else ""
+    return knitwear.ParameterError(
+        f"cannot write the point cache '{path}': {err.strerror or err}{where}"
+    )
+
+
 def bake_animation(
     obj: bpy.types.Object,
     *,
@@ -62,7 +81,8 @@ def bake_animation(
     context: bpy.types.Context | None = None,
 ) -> Path:
     """Bake knit ``obj``'s animation for frames ``frame_start..=frame_end``; return the cache
-    file. Raises `knitwear.KnitError` (nothing is changed then) if the knit cannot follow."""
+    file. Raises `knitwear.KnitError` (nothing is changed then) if the knit cannot follow or
+    the file cannot be written (a folder, a read-only place: the error names the path)."""
     context = context or bpy.context
     if not obj.knitwear.is_knit:
         raise knitwear.ParameterError(f"'{obj.name}' is not a knit: knit a surface first")
@@ -73,37 +93,38 @@ def bake_animation(
     mesh = obj.data
     n = len(mesh.vertices)
     frame_before = scene.frame_current
-    positions = np.empty((n, 3), np.float32)
     # The knit's own positions (what it shows outside the baked range) stay as they were.
-    rest = np.empty((n, 3), np.float32)
-    mesh.attributes["position"].data.foreach_get("vector", rest.ravel())
+    rest = mesh_build.read_positions(mesh)
     matrix_before = obj.matrix_world.copy()
     following = obj.knitwear.follow_source
     # The handler would follow too on each frame_set: the bake follows once, itself.
     obj.knitwear.follow_source = False
     matrices = []
-    path.parent.mkdir(parents=True, exist_ok=True)
-    # Written beside the target and moved over it at the end: a failed bake leaves an earlier
-    # cache (and its modifier) as they were.
-    partial = path.with_name(path.name + ".partial")
+    partial: Path | None = None
     try:
+        partial = _partial_path(path)
         with partial.open("wb") as handle:
             write_pc2_header(handle, n, frame_start, frame_end - frame_start + 1)
             for frame in range(frame_start, frame_end + 1):
                 scene.frame_set(frame)
                 follow.follow(obj, context=context)
-                mesh.attributes["position"].data.foreach_get("vector", positions.ravel())
+                positions = mesh_build.read_positions(mesh)
                 handle.write(positions.astype("<f4", copy=False).tobytes())
                 matrices.append(obj.matrix_world.copy())
-    except BaseException:
-        partial.unlink(missing_ok=True)
+        partial.replace(path)
+    except BaseException as err:
+        # Every way out but success leaves the scene, the knit and any earlier cache as they
+        # were, and no partial file behind.
+        if partial is not None:
+            partial.unlink(missing_ok=True)
         scene.frame_set(frame_before)
         mesh_build.write_positions(mesh, rest)
         obj.matrix_world = matrix_before
         obj.knitwear.follow_source = following
+        if isinstance(err, OSError):
+            raise _write_error(path, err) from err
         raise
 
-    partial.replace(path)
     previous = obj.modifiers.get(CACHE_MODIFIER)
     if previous is not None:
         obj.modifiers.remove(previous)

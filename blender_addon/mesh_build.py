@@ -163,9 +163,22 @@ def _build(name: str, result: object) -> bpy.types.Mesh:
     return mesh
 
 
+def read_positions(mesh: bpy.types.Mesh) -> np.ndarray:
+    """``mesh``'s vertex positions, (V, 3) float32."""
+    positions = np.empty((len(mesh.vertices), 3), dtype=np.float32)
+    # A mesh without vertices has no "position" attribute at all (an empty knit: every
+    # stitch left to the texture, or out of the camera's view).
+    if len(positions):
+        mesh.attributes["position"].data.foreach_get("vector", positions.ravel())
+    return positions
+
+
 def write_positions(mesh: bpy.types.Mesh, positions: np.ndarray) -> None:
     """Rewrite ``mesh``'s vertex positions (same count) in one `foreach_set`: the per-frame
-    path of a knit that follows its source (about 1 ms per million vertices)."""
+    path of a knit that follows its source (about 1 ms per million vertices). Nothing to do
+    for an empty mesh, which has no position attribute."""
+    if len(mesh.vertices) == 0:
+        return
     mesh.attributes["position"].data.foreach_set("vector", _f32(positions))
     mesh.update()
 

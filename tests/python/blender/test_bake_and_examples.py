@@ -144,6 +144,35 @@ def test_a_failed_bake_keeps_the_earlier_cache(
     with pytest.raises(knitwear.KnitError):
         addon.bake.bake_animation(knit, frame_start=1, frame_end=4, filepath=str(cache))
     assert cache.read_bytes() == before
-    assert not cache.with_name("knit.pc2.partial").exists()
+    assert [p.name for p in tmp_path.iterdir()] == ["knit.pc2"], "a partial file was left"
     assert [m.type for m in knit.modifiers].count("MESH_CACHE") == 1
     assert knit.knitwear.follow_source
+
+
+@pytest.mark.parametrize("where", ["folder", "under a file"])
+def test_baking_to_a_path_that_cannot_be_a_file_is_a_clear_error(
+    api: ModuleType, addon: ModuleType, tmp_path: Path, where: str
+) -> None:
+    """Issue 18: a folder gave a raw OSError traceback and left a large "<folder>.partial"
+    behind."""
+    import knitwear
+
+    knit = api.knit_object(waving_cloth(), **SMALL)
+    bpy.context.scene.frame_end = 3
+    folder = tmp_path / "caches"
+    folder.mkdir()
+    (tmp_path / "notes.txt").write_text("a file, not a folder")
+    target = folder if where == "folder" else tmp_path / "notes.txt" / "knit.pc2"
+    before = positions(knit.data).copy()
+    listing = sorted(p.name for p in tmp_path.rglob("*"))
+    with pytest.raises(knitwear.KnitError, match="cannot write the point cache") as raised:
+        addon.bake.bake_animation(knit, frame_start=1, frame_end=3, filepath=str(target))
+    assert str(target) in str(raised.value)
+    # The operator reports it (headless, an ERROR report raises RuntimeError).
+    bpy.context.view_layer.objects.active = knit
+    with pytest.raises(RuntimeError, match="cannot write the point cache"):
+        bpy.ops.object.knitwear_bake(filepath=str(target))
+    assert sorted(p.name for p in tmp_path.rglob("*")) == listing, "a partial file was left"
+    assert not any(m.type == "MESH_CACHE" for m in knit.modifiers)
+    assert knit.knitwear.follow_source and bpy.context.scene.frame_current == 1
+    np.testing.assert_array_equal(positions(knit.data), before)

@@ -3,10 +3,12 @@ levels are pinned so an animated knit keeps its topology, stitches left to the t
 the knitwear texture on the source, and without a camera nothing changes."""
 
 import importlib
+from pathlib import Path
 from types import ModuleType
 
 import bpy
 import numpy as np
+import pytest
 from blender_scenes import STRIP, aim, camera, positions, receding_camera, strip
 
 #: Thresholds twice the defaults', so this strip at 1080p gets every built level.
@@ -34,7 +36,7 @@ def test_auto_detail_follows_the_camera_and_the_report_counts_levels(api: Module
     assert outcome.triangles_full_detail == full.triangles
     assert outcome.triangles < full.triangles
     assert len(outcome.object.data.polygons) == outcome.triangles
-    levels = np.frombuffer(bytes(outcome.object[api.LEVELS_PROPERTY]), dtype=np.uint8)
+    levels = np.frombuffer(api.bound_of(outcome.object).levels, dtype=np.uint8)
     assert levels.size == outcome.stitches
     # The operator says what it built.
     bpy.context.view_layer.objects.active = source
@@ -89,6 +91,36 @@ def test_stitches_below_a_few_pixels_are_left_to_the_knitwear_texture(api: Modul
     assert outcome.levels["texture"] > 0
     assert outcome.texture_material is not None
     assert source.data.materials[0].name == outcome.texture_material
+
+
+def test_a_knit_with_every_stitch_left_to_the_texture_is_an_empty_knit_that_works(
+    api: ModuleType, addon: ModuleType, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Issue 18: a knit of 0 vertices (every stitch below Texture Below) raised KeyError
+    'position' in the frame handler on every frame."""
+    source = strip()
+    receding_camera()
+    far = {"detail_full_px": 1e4, "detail_mid_px": 1e4, "detail_texture_px": 1e4}
+    outcome = api.knit(source, **STRIP, **far)
+    obj = outcome.object
+    assert outcome.levels["texture"] == outcome.stitches > 0
+    assert len(obj.data.vertices) == len(obj.data.polygons) == 0
+    assert outcome.texture_material is not None
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 3
+    capsys.readouterr()
+    source.location.z += 0.01  # something to follow
+    for frame in (2, 3, 1):
+        scene.frame_set(frame)
+    assert "Knitwear" not in capsys.readouterr().out
+    assert obj.matrix_world.translation.z == pytest.approx(0.01)
+    bpy.context.view_layer.objects.active = obj
+    assert bpy.ops.object.knitwear_update() == {"FINISHED"}
+    cache = addon.bake.bake_animation(
+        obj, frame_start=1, frame_end=3, filepath=str(tmp_path / "empty.pc2")
+    )
+    _start, frames = addon.bake.read_pc2(cache)
+    assert frames.shape == (3, 0, 3)
 
 
 def test_back_faces_of_a_closed_mesh_are_culled(api: ModuleType) -> None:
