@@ -24,6 +24,29 @@ from .settings_ui import draw_settings
 #: Largest texture side, pixels (the core's limit).
 MAX_SIZE = 16384
 
+#: Most pixels a texture may have. The image is packed into the .blend (generated pixels are
+#: otherwise lost on save) as a float EXR of 16 bytes a pixel, and Blender 5.0.1 cannot pack
+#: 2 GiB or more: measured with incompressible pixels, 11584 x 11584 packs in 2,147,303,341
+#: bytes, 8192 x 16384 gives a negative size and 16384 x 16384 crashes it. 64 MiB is left
+#: for the EXR's headers and offset tables (about 0.3 MiB at 11584 rows).
+MAX_PIXELS = (2**31 - 2**26) // 16
+
+
+def check_size(width: int, height: int) -> None:
+    """Refuse a ``width x height`` texture Blender could not keep (`MAX_PIXELS`), naming it."""
+    if not (1 <= width <= MAX_SIZE and 1 <= height <= MAX_SIZE):
+        raise knitwear.ParameterError(
+            f"texture size {width} x {height}: each side must be 1 to {MAX_SIZE} pixels"
+        )
+    if width * height > MAX_PIXELS:
+        side = int(MAX_PIXELS**0.5)
+        raise knitwear.BudgetError(
+            f"a {width} x {height} texture is {width * height * 16 / 2**30:.1f} GiB of float "
+            f"pixels, and Blender cannot pack an image of 2 GiB or more into the .blend: use at "
+            f"most {MAX_PIXELS:,} pixels (e.g. {side} x {side}, or {MAX_SIZE} x "
+            f"{MAX_PIXELS // MAX_SIZE})"
+        )
+
 
 def texture_name(source: bpy.types.Object) -> str:
     """The name of ``source``'s knit texture image and material."""
@@ -120,6 +143,7 @@ def texture_object(
     Raises `knitwear.KnitError` (nothing is created then).
     """
     context = context or bpy.context
+    check_size(int(width), int(height))
     settings = core_inputs.complete(settings)
     source = core_inputs.check_source(source, "the object")
     inputs = core_inputs.core_inputs(source, context, settings)

@@ -176,6 +176,9 @@ def test_a_render_shows_the_stripes_along_the_course_direction(
         (mesh_without_uvs, {}, "UV"),
         (uv_mesh, {"courses": 10**6, "wales": 10**6}, "budget"),
         (nurbs_patch, {"pattern": "CUSTOM", "pattern_chart": "kq"}, "pattern"),
+        # Issue 18: Blender cannot pack a float image of 2 GiB or more (it crashed).
+        (uv_mesh, {"texture_width": 16384, "texture_height": 16384}, "cannot pack"),
+        (uv_mesh, {"texture_width": 16384, "texture_height": 8192}, "at most 130,023,424"),
     ],
 )
 def test_errors_leave_the_scene_unchanged(
