@@ -23,9 +23,8 @@ from typing import Any
 import bpy
 import knitwear
 import numpy as np
-from mathutils import Matrix
 
-from . import core_inputs, material, mesh_build, sampling, source_link, texture
+from . import animation, core_inputs, material, mesh_build, sampling, source_link, texture
 from .properties import KNIT_SETTINGS
 
 #: Called with the fraction done (0..1) between the steps of a knit.
@@ -39,7 +38,8 @@ Progress = core_inputs.Progress
 MIN_CLEARANCE = 0.5
 
 #: Custom property of a knit object: its stitch levels (one byte per stitch, row-major) when
-#: it was knitted with auto detail, pinned so every frame rebuilds the same topology.
+#: it was knitted with auto detail, pinned so every frame rebuilds the same topology. Stored
+#: packed (`pack_pinned`); read it with `bound_of`.
 LEVELS_PROPERTY = "knitwear_stitch_levels"
 
 #: Custom property of a knit object knitted with Cull Hidden Yarn: the triangles the camera
@@ -108,33 +108,61 @@ class Bound:
     seen: bytes | None = None
 
 
-def _animated(obj: bpy.types.Object | None) -> bool:
-    """Whether ``obj``, its data or a parent has animation or drivers."""
-    while obj is not None:
-        for idb in (obj, obj.data):
-            anim = getattr(idb, "animation_data", None)
-            if anim is not None and (anim.action is not None or len(anim.drivers) > 0):
-                return True
-        obj = obj.parent
-    return False
+def pack_pinned(data: bytes) -> np.ndarray:
+    """Pinned bytes as the ID property array `bound_of` reads back: int32 ``[byte count,
+    the bytes zero-padded to whole little-endian words...]``.
+
+    Not a bytes property: Blender 5.0.1 cuts a bytes ID property at its first zero byte when
+    an existing one is assigned again (an Update Knit), and an array has an explicit length
+    that no version truncates. It is also assigned from a buffer, at memory speed.
+    """
+    padded = data + bytes(-len(data) % 4)
+    words = np.frombuffer(padded, dtype="<i4")
+    return np.concatenate([np.array([len(data)], dtype=np.int32), words.astype(np.int32)])
 
 
-def _camera_frames(scene: bpy.types.Scene, source: bpy.types.Object) -> list[int]:
+def unpack_pinned(value: Any) -> bytes | None:
+    """The bytes `pack_pinned` stored (or a bytes property of a file saved before it)."""
+    if value is None:
+        return None
+    if isinstance(value, bytes):
+        return value  # a bytes property: a file saved before `pack_pinned`
+    words = np.asarray(value, dtype=np.int32)
+    if words.size == 0 or not 0 <= int(words[0]) <= 4 * (words.size - 1):
+        raise knitwear.SurfaceError(
+            "the knit's pinned detail data is damaged: use Update Knit to pin it again"
+        )
+    return words[1:].astype("<i4").tobytes()[: int(words[0])]
+
+
+def _set_pinned(obj: bpy.types.Object, key: str, data: bytes | None) -> None:
+    # Removed first: assigning over an existing property keeps parts of the old one (its type,
+    # and in 5.0.1 a bytes value's length up to its first zero byte).
+    obj.pop(key, None)
+    if data is not None:
+        obj[key] = pack_pinned(data)
+
+
+def _camera_frames(scene: bpy.types.Scene, source_animates: bool) -> list[int]:
     """The frames to model the knit for: the current one, and where the camera or the
     source moves, up to `MAX_CAMERA_FRAMES` spread over the scene's frame range."""
     frames = [scene.frame_current]
     start, end = scene.frame_start, scene.frame_end
-    if end > start and (_animated(scene.camera) or _animated(source)):
+    if end > start and (source_animates or animation.animates(scene.camera)):
         count = min(MAX_CAMERA_FRAMES, end - start + 1)
         frames += [int(round(f)) for f in np.linspace(start, end, count)]
     return sorted(set(frames))
 
 
 def _camera_view(
-    scene: bpy.types.Scene, source: bpy.types.Object, depsgraph: bpy.types.Depsgraph
+    scene: bpy.types.Scene,
+    source: bpy.types.Object,
+    depsgraph: bpy.types.Depsgraph,
+    origin: tuple[float, float, float],
 ) -> tuple[np.ndarray, np.ndarray]:
     """The scene camera's clip-from-object matrix and eye in the knit's object space (the
-    source's location and rotation, as `sampling` gives the knit), in the current frame."""
+    source's location and rotation moved to ``origin``, as `sampling` gives the knit), in
+    the current frame."""
     cam = scene.camera.evaluated_get(depsgraph)
     r = scene.render
     x = max(1, r.resolution_x * r.resolution_percentage // 100)
@@ -142,8 +170,9 @@ def _camera_view(
     proj = cam.calc_matrix_camera(
         depsgraph, x=x, y=y, scale_x=r.pixel_aspect_x, scale_y=r.pixel_aspect_y
     )
-    loc, rot, _scale = source.evaluated_get(depsgraph).matrix_world.decompose()
-    world_from_object = Matrix.LocRotScale(loc, rot, None)
+    world_from_object = sampling.knit_matrix(
+        source.evaluated_get(depsgraph).matrix_world, origin
+    )
     clip = proj @ cam.matrix_world.inverted() @ world_from_object
     object_from_world = world_from_object.inverted()
     if cam.data.type == "ORTHO":
@@ -181,25 +210,32 @@ def _is_closed(source: bpy.types.Object, depsgraph: bpy.types.Depsgraph) -> bool
 
 
 def detail_settings(
-    source: bpy.types.Object, context: bpy.types.Context, settings: Mapping[str, Any]
+    source: bpy.types.Object,
+    context: bpy.types.Context,
+    settings: Mapping[str, Any],
+    origin: tuple[float, float, float] = (0.0, 0.0, 0.0),
 ) -> dict[str, Any]:
     """The core's camera-driven detail keywords for ``settings``: empty unless Detail is
     Auto and the scene has a (perspective or orthographic) camera. An animated camera or
-    source is followed over the scene's frame range (the frame is restored after)."""
+    source is followed over the scene's frame range (the frame is restored after).
+    ``origin`` is the sampled source's (`sampling.Sampled.origin`)."""
     scene = context.scene
     camera = scene.camera
     if settings["detail_mode"] != "AUTO" or camera is None or camera.type != "CAMERA":
         return {}
     if camera.data.type not in {"PERSP", "ORTHO"}:
         return {}  # a panoramic projection has no single clip matrix
+    # Armatures, hooks, physics...: whatever the depsgraph animates it with counts.
+    source_animates = animation.animates(source, context)
     frame, subframe = scene.frame_current, scene.frame_subframe
-    frames = _camera_frames(scene, source)
+    frames = _camera_frames(scene, source_animates)
     views = []
     try:
         for f in frames:
             if f != scene.frame_current or len(frames) > 1:
                 scene.frame_set(f)
-            views.append(_camera_view(scene, source, context.evaluated_depsgraph_get()))
+            depsgraph = context.evaluated_depsgraph_get()
+            views.append(_camera_view(scene, source, depsgraph, origin))
     finally:
         if (scene.frame_current, scene.frame_subframe) != (frame, subframe):
             scene.frame_set(frame, subframe=subframe)
@@ -216,7 +252,7 @@ def detail_settings(
     )
     # The seen yarn is found for the source's pose now: a source that animates (and may
     # deform) would show what was culled, so only a still source culls its hidden yarn.
-    cull_hidden = bool(settings["cull_hidden"]) and not _animated(source)
+    cull_hidden = bool(settings["cull_hidden"]) and not source_animates
     return {
         "camera": camera_views,
         "detail_px": (
@@ -245,7 +281,7 @@ def _run_core(
         inputs.kwargs,
         inputs.min_samples,
     )
-    detail = detail_settings(source, context, settings)
+    detail = detail_settings(source, context, settings, sampled.origin)
     t0 = time.perf_counter()
     knit = knitwear.Knit(sampled.surface, pattern, **kwargs, **detail)
     result = knit.build(sampled.surface)
@@ -275,14 +311,8 @@ def _store(
     stored.bound_yarn_radius = bound.yarn_radius
     stored.bound_stitch_size = bound.stitch_size
     stored.bound_samples = bound.samples
-    if bound.levels is None:
-        obj.pop(LEVELS_PROPERTY, None)
-    else:
-        obj[LEVELS_PROPERTY] = bound.levels
-    if bound.seen is None:
-        obj.pop(SEEN_PROPERTY, None)
-    else:
-        obj[SEEN_PROPERTY] = bound.seen
+    _set_pinned(obj, LEVELS_PROPERTY, bound.levels)
+    _set_pinned(obj, SEEN_PROPERTY, bound.seen)
     stored.is_knit = True
 
 
@@ -344,7 +374,8 @@ def knit(
     """Knit ``source`` into a new object; return it with timings and counts.
 
     The new object, "<source>.knit", goes into the source's first collection with the source's
-    location and rotation (its scale is baked into the mesh: see `sampling`), carries the
+    location and rotation (its scale and shear are baked into the mesh, and a surface far
+    from its origin moves the knit's origin to its centre: see `sampling`), carries the
     "Knitwear Yarn" material and remembers ``source`` and the settings for `update_knit`.
     """
     t_start = time.perf_counter()
@@ -400,15 +431,13 @@ def knit_result(
 def bound_of(obj: bpy.types.Object) -> Bound:
     """The values knit object ``obj`` pinned when it was knitted or last updated."""
     stored = obj.knitwear
-    levels = obj.get(LEVELS_PROPERTY)
-    seen = obj.get(SEEN_PROPERTY)
     return Bound(
         tuple(stored.bound_counts),
         stored.bound_yarn_radius,
         tuple(stored.bound_stitch_size),
         tuple(stored.bound_samples),
-        None if levels is None else bytes(levels),
-        None if seen is None else bytes(seen),
+        unpack_pinned(obj.get(LEVELS_PROPERTY)),
+        unpack_pinned(obj.get(SEEN_PROPERTY)),
     )
 
 

@@ -325,9 +325,9 @@ def measure(api: Any, strip: Any, tess: Tessellation, settings: dict[str, Any], 
     seconds = median_seconds(run, repeats)
     outcome = outcomes[-1]
     core = float(np.median([o.core_seconds for o in outcomes]))
-    raw = outcome.object.get(api.LEVELS_PROPERTY)
+    raw = api.bound_of(outcome.object).levels
     levels = (np.zeros((COURSES, WALES), np.uint8) if raw is None
-              else np.frombuffer(bytes(raw), np.uint8).reshape(COURSES, WALES))
+              else np.frombuffer(raw, np.uint8).reshape(COURSES, WALES))
     image = render(out / f"{name}.png")
     _remove(outcome.object)
     bpy.context.view_layer.update()

@@ -18,9 +18,23 @@ def nan_vertex_mesh() -> bpy.types.Object:
     return obj
 
 
+def cube_whose_uv_maps_were_removed() -> bpy.types.Object:
+    """A cube whose UV maps a script removed (`uv_layers.remove` tags nothing, so the
+    evaluated cube still had its map, and was knitted over it). Only Blender's internal
+    UV selection attributes are left."""
+    bpy.ops.mesh.primitive_cube_add(size=0.2)
+    obj = bpy.context.active_object
+    bpy.context.view_layer.update()
+    while obj.data.uv_layers:
+        obj.data.uv_layers.remove(obj.data.uv_layers[0])
+    assert any(a.name.startswith(".uv_select") for a in obj.data.attributes)
+    return obj
+
+
 # (source, settings, core error class name, words the message must contain)
 CASES: dict[str, tuple[Callable[[], bpy.types.Object], dict[str, Any], str, str]] = {
     "no uv map": (mesh_without_uvs, SMALL, "SurfaceError", "UV map"),
+    "uv maps removed": (cube_whose_uv_maps_were_removed, SMALL, "SurfaceError", "has no UV map"),
     "nan vertex": (nan_vertex_mesh, SMALL, "SurfaceError", ""),
     "absurd stitch count": (
         uv_mesh,

@@ -6,9 +6,11 @@ import importlib
 import sys
 from pathlib import Path
 from types import ModuleType
+from typing import Any
 
 import bpy
 import numpy as np
+import pytest
 from blender_scenes import STRIP, camera, positions, receding_camera, strip
 from PIL import Image
 
@@ -84,7 +86,7 @@ def test_the_seen_yarn_is_pinned_so_the_knit_follows_its_source(api: ModuleType)
     outcome = api.knit(source, **STRIP)
     obj = outcome.object
     assert outcome.triangles_hidden > 0
-    seen = bytes(obj[api.SEEN_PROPERTY])
+    seen = api.bound_of(obj).seen
     assert len(seen) == -(-(outcome.triangles + outcome.triangles_hidden) // 8)
     follow = importlib.import_module(f"{api.__package__}.follow")
     # The source is edited (a stretch along its length): the knit follows with the same mesh.
@@ -125,17 +127,128 @@ def test_a_source_that_animates_keeps_its_hidden_yarn(api: ModuleType) -> None:
     assert not outcome.object.data.has_custom_normals
 
 
+def test_the_pinned_yarn_survives_update_save_and_reload(
+    api: ModuleType, addon: ModuleType, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Issue 18: Blender 5.0.1 cuts a bytes property at its first zero byte when it is
+    assigned again, so Update Knit left 29 of 1,343 pinned bytes; every frame then said "did
+    not follow its source" and Bake failed."""
+    source = _scene()
+    outcome = api.knit(source, **STRIP)
+    obj, name = outcome.object, outcome.object.name
+    pinned = api.bound_of(obj)
+    assert pinned.levels is not None and pinned.seen is not None
+    assert len(pinned.levels) == outcome.stitches
+    assert len(pinned.seen) == -(-(outcome.triangles + outcome.triangles_hidden) // 8)
+    # What the truncation cut at: a zero byte well before the end.
+    assert 0 in pinned.seen[:-1]
+
+    bpy.context.view_layer.objects.active = obj
+    assert bpy.ops.object.knitwear_update() == {"FINISHED"}
+    assert bpy.ops.object.knitwear_update() == {"FINISHED"}  # over the stored property
+    assert api.bound_of(obj) == pinned, "the same camera pins the same detail"
+    blend = tmp_path / "pinned.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+    bpy.ops.wm.open_mainfile(filepath=str(blend))
+    obj = bpy.data.objects[name]
+    assert api.bound_of(obj) == pinned
+    capsys.readouterr()
+
+    # The source is edited; on the next frame the knit follows it, with the pinned mesh.
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 3
+    before = positions(obj.data).copy()
+    obj.knitwear.source.scale.y *= 1.05
+    scene.frame_set(2)
+    assert "Knitwear" not in capsys.readouterr().out
+    after = positions(obj.data)
+    assert after.shape == before.shape
+    assert np.abs(after[:, 1]).max() > np.abs(before[:, 1]).max() * 1.02
+    # And bakes.
+    cache = addon.bake.bake_animation(obj, frame_start=1, frame_end=3)
+    _start, frames = addon.bake.read_pc2(cache)
+    assert frames.shape == (3, len(obj.data.vertices), 3)
+    np.testing.assert_array_equal(frames[1], after)
+
+
+def test_pinned_bytes_of_an_older_file_are_still_read(api: ModuleType) -> None:
+    """Files saved before the pinned data became int arrays hold bytes properties."""
+    outcome = api.knit(_scene(), **STRIP)
+    obj = outcome.object
+    pinned = api.bound_of(obj)
+    del obj[api.SEEN_PROPERTY], obj[api.LEVELS_PROPERTY]
+    obj[api.SEEN_PROPERTY] = pinned.seen  # a new bytes property keeps every byte
+    obj[api.LEVELS_PROPERTY] = pinned.levels
+    assert isinstance(obj[api.SEEN_PROPERTY], bytes)
+    assert api.bound_of(obj) == pinned
+
+
+def _armature_bend(source: bpy.types.Object) -> None:
+    """Bend ``source`` from frame 1 to 5 with an armature: the source itself has no keys."""
+    rig = bpy.data.objects.new("Rig", bpy.data.armatures.new("Rig"))
+    bpy.context.scene.collection.objects.link(rig)
+    bpy.context.view_layer.objects.active = rig
+    bpy.ops.object.mode_set(mode="EDIT")
+    bone = rig.data.edit_bones.new("Bone")
+    bone.head, bone.tail = (0.0, -0.3, 0.0), (0.0, 0.3, 0.0)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    group = source.vertex_groups.new(name="Bone")
+    group.add(list(range(len(source.data.vertices))), 1.0, "REPLACE")
+    source.modifiers.new("Armature", "ARMATURE").object = rig
+    pose = rig.pose.bones["Bone"]
+    pose.keyframe_insert("rotation_quaternion", frame=1)
+    pose.rotation_quaternion = (0.92, 0.38, 0.0, 0.0)
+    pose.keyframe_insert("rotation_quaternion", frame=5)
+
+
+def _scene_time_sway(source: bpy.types.Object) -> None:
+    """Lift ``source`` with the scene time through Geometry Nodes: nothing is keyed at all."""
+    tree = bpy.data.node_groups.new("Sway", "GeometryNodeTree")
+    tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
+    tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
+    nodes, links = tree.nodes, tree.links
+    given, result = nodes.new("NodeGroupInput"), nodes.new("NodeGroupOutput")
+    time, offset = nodes.new("GeometryNodeInputSceneTime"), nodes.new("ShaderNodeCombineXYZ")
+    move = nodes.new("GeometryNodeSetPosition")
+    links.new(given.outputs[0], move.inputs["Geometry"])
+    links.new(time.outputs["Seconds"], offset.inputs["Z"])
+    links.new(offset.outputs[0], move.inputs["Offset"])
+    links.new(move.outputs[0], result.inputs[0])
+    source.modifiers.new("Sway", "NODES").node_group = tree
+
+
+@pytest.mark.parametrize("animate", [_armature_bend, _scene_time_sway], ids=["armature", "nodes"])
+def test_a_source_the_depsgraph_animates_keeps_its_hidden_yarn(
+    api: ModuleType, animate: Any
+) -> None:
+    """Issue 18: only keys on the source itself counted, so a mesh bent by an animated
+    armature was culled for its first pose and showed holes in the others."""
+    source = _scene()
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 5
+    still = api.knit(source, **STRIP)
+    assert still.triangles_hidden > 0
+    bpy.data.objects.remove(still.object)
+    animate(source)
+    scene.frame_set(1)
+    outcome = api.knit(source, **STRIP)
+    assert outcome.auto_detail
+    assert outcome.triangles_hidden == 0
+    assert api.SEEN_PROPERTY not in outcome.object
+    assert scene.frame_current == 1
+
+
 def test_a_camera_below_keeps_the_back_of_the_fabric(api: ModuleType) -> None:
     source = strip()
     camera((0.0, -0.38, 0.06), (0.0, -0.05, 0.0))
     front = api.knit(source, **STRIP)
     front_seen = np.unpackbits(
-        np.frombuffer(bytes(front.object[api.SEEN_PROPERTY]), np.uint8), bitorder="little"
+        np.frombuffer(api.bound_of(front.object).seen, np.uint8), bitorder="little"
     )
     camera((0.0, -0.38, -0.06), (0.0, -0.05, 0.0))  # the same view from below the strip
     back = api.knit(source, **STRIP)
     back_seen = np.unpackbits(
-        np.frombuffer(bytes(back.object[api.SEEN_PROPERTY]), np.uint8), bitorder="little"
+        np.frombuffer(api.bound_of(back.object).seen, np.uint8), bitorder="little"
     )
     assert back.levels == front.levels
     # At this grazing angle both see the yarn's silhouettes, but a good part of what the
