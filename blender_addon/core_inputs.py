@@ -6,6 +6,7 @@ stitches, perturbation and colours a knit of the same settings builds. Converts 
 creates nothing in the blend file.
 """
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -88,14 +89,26 @@ def _colors(settings: Mapping[str, Any]) -> dict[str, Any]:
     )
 
 
+def _estimated_count(n: float) -> int:
+    """A stitch count measured on a probe, as a whole number the budget check takes (a
+    non-finite one as the largest)."""
+    return max(1, round(min(n, 1e12))) if math.isfinite(n) else 10**12
+
+
 def _min_samples(
     source: bpy.types.Object,
     context: bpy.types.Context,
     settings: Mapping[str, Any],
-    size: Mapping[str, Any],
+    kwargs: Mapping[str, Any],
+    pattern: "knitwear.Pattern",
 ) -> tuple[int, int] | None:
     """Grid samples (along the courses, along the wales) a NURBS source is tessellated with:
-    enough for the stitch count it will get. None for a mesh, which is used as it is."""
+    enough for the stitch count it will get. None for a mesh, which is used as it is.
+
+    A count over the core's memory budget is refused here (`knitwear.check_budget`, the check
+    the knit makes first), before the surface is sampled densely for it: a 500 m surface at a
+    knitting gauge answers in a fraction of a second."""
+    size = {k: kwargs[k] for k in ("gauge", "courses", "wales") if k in kwargs}
     if source.type == "MESH":
         return None
     if "gauge" in size:
@@ -109,6 +122,14 @@ def _min_samples(
         courses = extent_v * size["gauge"][1] / shared_inputs.GAUGE_LENGTH
     else:
         wales, courses = size["wales"], size["courses"]
+    knitwear.check_budget(
+        pattern,
+        _estimated_count(courses),
+        _estimated_count(wales),
+        ring_segments=kwargs["ring_segments"],
+        samples_per_loop=kwargs["samples_per_loop"],
+        budget_bytes=kwargs.get("budget_bytes"),
+    )
     per = sampling.SAMPLES_PER_STITCH
     # Capped so an absurd count reaches the core's budget check instead of a huge grid.
     return (int(min(wales, 1e7) * per) + 1, int(min(courses, 1e7) * per) + 1)
@@ -157,10 +178,9 @@ def core_inputs(
     knitwear texture shares it). Creates nothing; raises `knitwear.KnitError`."""
     pattern = pattern_of(settings)
     kwargs = core_settings(settings, context.scene)
-    size = {k: kwargs[k] for k in ("gauge", "courses", "wales") if k in kwargs}
     if progress:
         progress(0.05)
-    min_samples = _min_samples(source, context, settings, size)
+    min_samples = _min_samples(source, context, settings, kwargs, pattern)
     sampled = sampling.sample_object(
         source, context, direction=settings["direction"], min_samples=min_samples
     )

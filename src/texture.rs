@@ -121,15 +121,13 @@ pub fn knit_texture(
     // Taken before the knit is prepared, and fallibly: a memory limit (ulimit -v, a farm's
     // cgroup) refuses the image here instead of aborting the process.
     let mut pixels: Vec<f32> = Vec::new();
-    pixels
-        .try_reserve_exact(width * height * 4)
-        .map_err(|_| {
-            KnitError::Budget(format!(
-                "the system could not give the {} MiB a {width} x {height} texture needs: use \
+    pixels.try_reserve_exact(width * height * 4).map_err(|_| {
+        KnitError::Budget(format!(
+            "the system could not give the {} MiB a {width} x {height} texture needs: use \
                  a smaller image",
-                bytes >> 20
-            ))
-        })?;
+            bytes >> 20
+        ))
+    })?;
     pixels.resize(width * height * 4, 0.0);
     // The texture draws every stitch: camera-driven detail (which leaves distant stitches to
     // this very texture) does not apply.

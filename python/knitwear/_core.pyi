@@ -28,6 +28,7 @@ __all__ = [
     "__version__",
     "_force_internal_error",
     "cancel",
+    "check_budget",
     "fractal_noise",
     "knit_texture",
     "measure_clearance",
@@ -427,6 +428,19 @@ def cancel() -> None:
     """Stops every knitwear call now running, from any thread (the add-on's Esc): each raises
     `CancelledError` within a fraction of a second. Ctrl-C in the calling thread stops a
     call the same way and raises `KeyboardInterrupt`."""
+
+def check_budget(
+    pattern: Pattern,
+    courses: int,
+    wales: int,
+    *,
+    ring_segments: int = 6,
+    samples_per_loop: int = 16,
+    budget_bytes: int | None = None,
+) -> int:
+    """Whether a knit of ``courses x wales`` stitches of ``pattern`` fits the memory budget,
+    as `Knit` checks it first: the output's upper bound in bytes, or `BudgetError`. Cheap (no
+    surface): refuses an absurd count before a surface is sampled densely for it."""
 
 def _force_internal_error() -> None:
     """Raises InternalError from a deliberate panic in the core (a test hook: no Rust panic

@@ -18,6 +18,7 @@ mod topology;
 
 pub use output::{measure, KnitOutput, KnitStats, UvYarn};
 pub use params::*;
+pub use prepare::check_budget;
 // What the steps share with each other (each is pub(super) in its own file).
 use build::*;
 

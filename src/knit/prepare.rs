@@ -130,6 +130,29 @@ pub(super) fn level_runs(
     runs
 }
 
+/// The first check [`PreparedKnit::new`] makes: whether `courses x wales` stitches of
+/// `pattern` at `p`'s sampling (`samples_per_loop`, `ring_segments`) fit `p.budget_bytes` and a
+/// Blender mesh, at full detail. Returns the output's upper bound in bytes.
+///
+/// Cheap (no surface, no allocation): a caller that must sample a surface densely for a
+/// count can refuse an absurd one before it samples.
+pub fn check_budget(
+    pattern: &StitchPattern,
+    courses: usize,
+    wales: usize,
+    p: &KnitParams,
+) -> Result<u64> {
+    validate(p)?;
+    let stitches = courses as u64 * wales as u64;
+    let size = OutputSize::upper_bound(
+        stitches,
+        (p.samples_per_loop * YarnSkeleton::densest_sampling(pattern)) as u64,
+        p.ring_segments as u64,
+    );
+    budget::check(&size, p.budget_bytes, stitches)?;
+    Ok(size.bytes())
+}
+
 impl PreparedKnit {
     /// Validates the settings, fixes counts, radius and offsets from `surface`, lays out the
     /// lattice and checks the output against the budget (before anything large is allocated).
@@ -145,16 +168,7 @@ impl PreparedKnit {
         let (courses, wales, widened) = stitch_counts(surface, pattern, p)?;
         let m = p.ring_segments;
         let s = p.samples_per_loop;
-        let stitches = courses as u64 * wales as u64;
-        budget::check(
-            &OutputSize::upper_bound(
-                stitches,
-                (s * YarnSkeleton::densest_sampling(pattern)) as u64,
-                m as u64,
-            ),
-            p.budget_bytes,
-            stitches,
-        )?;
+        check_budget(pattern, courses, wales, p)?;
 
         let cyclic_v = surface.cyclic_v();
         let domain = surface.domain();

@@ -104,6 +104,32 @@ pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResul
     })
 }
 
+/// Whether a knit of `courses x wales` stitches of `pattern` fits the memory budget, as `Knit`
+/// checks it first: the output's upper bound in bytes, or `BudgetError`. Cheap (no surface):
+/// for a caller that must sample a surface densely for that many stitches, to refuse an
+/// absurd count before it samples.
+#[pyfunction]
+#[pyo3(signature = (pattern, courses, wales, *, ring_segments=6, samples_per_loop=16, budget_bytes=None))]
+pub(crate) fn check_budget(
+    pattern: &Bound<'_, PyPattern>,
+    #[pyo3(from_py_with = int_arg)] courses: i128,
+    #[pyo3(from_py_with = int_arg)] wales: i128,
+    #[pyo3(from_py_with = int_arg)] ring_segments: i128,
+    #[pyo3(from_py_with = int_arg)] samples_per_loop: i128,
+    #[pyo3(from_py_with = opt_int_arg)] budget_bytes: Option<i128>,
+) -> PyResult<u64> {
+    let defaults = KnitParams::default();
+    let params = KnitParams {
+        ring_segments: count_arg("ring_segments", ring_segments, 0)?,
+        samples_per_loop: count_arg("samples_per_loop", samples_per_loop, 0)?,
+        budget_bytes: budget_arg(budget_bytes, defaults.budget_bytes)?,
+        ..defaults
+    };
+    let courses = count_arg("courses", courses, 1)?;
+    let wales = count_arg("wales", wales, 1)?;
+    crate::knit::check_budget(&pattern.get().inner, courses, wales, &params).map_err(to_py)
+}
+
 /// The keyword settings of `Knit` (and so of `knitwear.knit`), checked and turned into core
 /// params.
 #[allow(clippy::too_many_arguments)]

@@ -54,6 +54,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(measure_cover, m)?)?;
     m.add_function(wrap_pyfunction!(_force_internal_error, m)?)?;
     m.add_function(wrap_pyfunction!(cancel, m)?)?;
+    m.add_function(wrap_pyfunction!(check_budget, m)?)?;
     pile::register(m)?;
     texture::register(m)?;
     settings::register(m)?;

@@ -31,6 +31,15 @@ def cube_whose_uv_maps_were_removed() -> bpy.types.Object:
     return obj
 
 
+def nurbs_patch_500_m() -> bpy.types.Object:
+    """Blender's NURBS patch scaled to about 500 m: at a knitting gauge, some 10^10 stitches,
+    refused before the surface is sampled densely for them."""
+    obj = nurbs_patch()
+    obj.scale = (500.0, 500.0, 500.0)
+    bpy.context.view_layer.update()
+    return obj
+
+
 # (source, settings, core error class name, words the message must contain)
 CASES: dict[str, tuple[Callable[[], bpy.types.Object], dict[str, Any], str, str]] = {
     "no uv map": (mesh_without_uvs, SMALL, "SurfaceError", "UV map"),
@@ -47,6 +56,12 @@ CASES: dict[str, tuple[Callable[[], bpy.types.Object], dict[str, Any], str, str]
         SMALL | {"courses": 10**6, "wales": 10**6},
         "BudgetError",
         "",
+    ),
+    "a 500 m surface at a knitting gauge": (
+        nurbs_patch_500_m,
+        SMALL | {"size_mode": "GAUGE"},
+        "BudgetError",
+        "stitches would need",
     ),
     "broken chart": (
         nurbs_patch,
