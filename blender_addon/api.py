@@ -13,12 +13,18 @@ exactly what a click gets::
 Settings are the keyword arguments of `knit_object` (see `properties.KnitSettingsMixin`
 for names, units and defaults). Every failure a user can cause raises a `knitwear.KnitError`
 subclass with a message fit for a report, and leaves the blend file as it was.
+
+A knit and an update are also available as steps (`knit_steps`, `update_steps`): generators
+that yield the one job only the core runs (a `CoreJob`: no `bpy`, the GIL released inside),
+are sent its result back and return the outcome. `run_steps` runs the job inline (what
+`knit` and `update` do); the operators run it on a worker thread (`core_thread`) so the
+interface stays live and Esc stops it.
 """
 
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Generator, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
 import bpy
 import knitwear
@@ -267,13 +273,37 @@ def detail_settings(
     }
 
 
-def _run_core(
+#: A step of a knit that only the core runs: no `bpy` (whatever thread runs it), the GIL
+#: released while the core works, stopped by `knitwear.cancel` with `knitwear.CancelledError`.
+CoreJob = Callable[[], Any]
+T = TypeVar("T")
+
+
+def run_steps(steps: Generator[CoreJob, Any, T]) -> T:
+    """Drive ``steps`` (`knit_steps`, `update_steps`) to their outcome on this thread, each
+    core job inline. An exception from a job is thrown back into the steps, as
+    `core_thread.StepsOnThread` does."""
+    value: Any = None
+    error: BaseException | None = None
+    while True:
+        try:
+            job = steps.throw(error) if error is not None else steps.send(value)
+        except StopIteration as done:
+            return done.value
+        try:
+            value, error = job(), None
+        except BaseException as e:  # noqa: BLE001 - handed back to the steps, as a thread would
+            value, error = None, e
+
+
+def _core_steps(
     source: bpy.types.Object,
     context: bpy.types.Context,
     settings: Mapping[str, Any],
     progress: Progress | None,
-) -> tuple[sampling.Sampled, Any, Bound, float]:
-    """Everything that can fail, before any datablock is created."""
+) -> Generator[CoreJob, Any, tuple[sampling.Sampled, Any, Bound, float]]:
+    """Everything that can fail, before any datablock is created: sampling here, then the
+    core's knit as the one `CoreJob`."""
     inputs = core_inputs.core_inputs(source, context, settings, progress)
     sampled, pattern, kwargs, min_samples = (
         inputs.sampled,
@@ -282,10 +312,13 @@ def _run_core(
         inputs.min_samples,
     )
     detail = detail_settings(source, context, settings, sampled.origin)
-    t0 = time.perf_counter()
-    knit = knitwear.Knit(sampled.surface, pattern, **kwargs, **detail)
-    result = knit.build(sampled.surface)
-    core_seconds = time.perf_counter() - t0
+
+    def job() -> tuple[Any, Any, float]:
+        t0 = time.perf_counter()
+        knit = knitwear.Knit(sampled.surface, pattern, **kwargs, **detail)
+        return knit, knit.build(sampled.surface), time.perf_counter() - t0
+
+    knit, result, core_seconds = yield job
     levels = knit.stitch_levels
     bound = Bound(
         knit.counts,
@@ -378,11 +411,23 @@ def knit(
     from its origin moves the knit's origin to its centre: see `sampling`), carries the
     "Knitwear Yarn" material and remembers ``source`` and the settings for `update_knit`.
     """
+    return run_steps(knit_steps(source, context=context, progress=progress, **settings))
+
+
+def knit_steps(
+    source: bpy.types.Object,
+    *,
+    context: bpy.types.Context | None = None,
+    progress: Progress | None = None,
+    **settings: Any,
+) -> Generator[CoreJob, Any, KnitOutcome]:
+    """`knit` as steps (see the module docstring): nothing is created before the core job
+    has returned, so steps closed or failing there leave the scene as it was."""
     t_start = time.perf_counter()
     context = context or bpy.context
     settings = core_inputs.complete(settings)
     source = core_inputs.check_source(source, "the object")
-    sampled, result, bound, core_s = _run_core(source, context, settings, progress)
+    sampled, result, bound, core_s = yield from _core_steps(source, context, settings, progress)
 
     t_mesh = time.perf_counter()
     name = f"{source.name}.knit"
@@ -425,7 +470,7 @@ def knit_result(
     The arrays are in the space of the knit object `knit_object` would create."""
     context = context or bpy.context
     source = core_inputs.check_source(source, "the object")
-    return _run_core(source, context, core_inputs.complete(settings), None)[1]
+    return run_steps(_core_steps(source, context, core_inputs.complete(settings), None))[1]
 
 
 def bound_of(obj: bpy.types.Object) -> Bound:
@@ -494,13 +539,25 @@ def update(
     fluffiness, a moved source) the mesh datablock is rewritten in place; otherwise a new one
     takes its place for every user, with its name and materials. The object follows its
     source's current location and rotation."""
+    return run_steps(update_steps(obj, context=context, progress=progress, **settings))
+
+
+def update_steps(
+    obj: bpy.types.Object,
+    *,
+    context: bpy.types.Context | None = None,
+    progress: Progress | None = None,
+    **settings: Any,
+) -> Generator[CoreJob, Any, KnitOutcome]:
+    """`update` as steps (see the module docstring): ``obj`` is untouched until the core job
+    has returned."""
     t_start = time.perf_counter()
     context = context or bpy.context
     if not obj.knitwear.is_knit:
         raise knitwear.ParameterError(f"'{obj.name}' is not a knit: knit a surface first")
     merged = core_inputs.complete(settings_from(obj) | dict(settings))
     source = core_inputs.check_source(obj.knitwear.source, f"'{obj.name}'")
-    sampled, result, bound, core_s = _run_core(source, context, merged, progress)
+    sampled, result, bound, core_s = yield from _core_steps(source, context, merged, progress)
 
     t_mesh = time.perf_counter()
     mesh = mesh_build.fill_mesh(obj.data, result)

@@ -3,12 +3,21 @@
 Thin by design: `execute` gathers the settings and calls one function of `api`, which does
 all the work and raises `knitwear.KnitError` for anything a user can get wrong. Nothing is
 created before the core has succeeded, so a cancelled operator leaves the scene as it was.
+
+Clicked in the interface (`invoke`), the same steps run modally: the core's job on a worker
+thread (`core_thread`), the progress on the cursor, and Esc stops the core within a fraction
+of a second, leaving the scene as it was. The interface takes no other input meanwhile, so
+nothing the knit reads can change under it. The redo panel, scripts and headless runs call
+`execute`, which knits in one go.
 """
+
+from collections.abc import Callable, Generator
+from typing import Any
 
 import bpy
 import knitwear
 
-from . import api
+from . import api, core_thread
 from .properties import SETTING_NAMES, KnitSettingsMixin
 from .settings_ui import draw_settings
 
@@ -75,6 +84,75 @@ def _report_level(outcome: api.KnitOutcome) -> set[str]:
     return {"WARNING"} if outcome.flat_clearance < api.MIN_CLEARANCE else {"INFO"}
 
 
+#: Seconds between the modal operators' looks at the core's worker thread.
+POLL_SECONDS = 0.05
+
+
+class _RunsCoreModally:
+    """`invoke` and `modal` for an operator whose work is `api` steps (see the module
+    docstring). The operator gives `_steps` (the steps for its settings) and `_finish` (its
+    report once they are done). `invoke` sets ``_runner`` (a `core_thread.StepsOnThread`),
+    ``_progress`` and ``_timer`` on the instance: not as class annotations, which Blender
+    would read as operator properties."""
+
+    def _steps(
+        self, context: bpy.types.Context, progress: Callable[[float], None]
+    ) -> Generator[api.CoreJob, Any, api.KnitOutcome]:
+        raise NotImplementedError
+
+    def _finish(self, context: bpy.types.Context, outcome: api.KnitOutcome) -> set[str]:
+        raise NotImplementedError
+
+    def invoke(self, context: bpy.types.Context, _event: bpy.types.Event) -> set[str]:
+        if bpy.app.background or context.window is None:
+            return self.execute(context)  # type: ignore[attr-defined]
+        self._progress = _Progress(context)
+        # `bpy.context`, not this call's `context`: the steps go on in later modal calls.
+        self._runner = core_thread.StepsOnThread(self._steps(bpy.context, self._progress.update))
+        try:
+            self._runner.start()
+        except knitwear.KnitError as err:
+            self._progress.end()
+            self.report({"ERROR"}, str(err))  # type: ignore[attr-defined]
+            return {"CANCELLED"}
+        wm = context.window_manager
+        self._timer = wm.event_timer_add(POLL_SECONDS, window=context.window)
+        wm.modal_handler_add(self)
+        if context.workspace is not None:
+            context.workspace.status_text_set("Knitwear: knitting... Esc to cancel")
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context: bpy.types.Context, event: bpy.types.Event) -> set[str]:
+        if event.type == "ESC" and event.value == "PRESS":
+            self._runner.cancel()
+        if event.type != "TIMER":
+            # Every other input is held back while the core works: the scene it reads and
+            # the objects the steps will write stay as they are.
+            return {"RUNNING_MODAL"}
+        try:
+            if not self._runner.poll():
+                return {"RUNNING_MODAL"}
+        except knitwear.CancelledError:
+            self._end(context)
+            self.report({"INFO"}, "Knitting cancelled: nothing was changed")  # type: ignore[attr-defined]
+            return {"CANCELLED"}
+        except knitwear.KnitError as err:
+            self._end(context)
+            self.report({"ERROR"}, str(err))  # type: ignore[attr-defined]
+            return {"CANCELLED"}
+        except BaseException:
+            self._end(context)
+            raise
+        self._end(context)
+        return self._finish(context, self._runner.outcome)
+
+    def _end(self, context: bpy.types.Context) -> None:
+        context.window_manager.event_timer_remove(self._timer)
+        self._progress.end()
+        if context.workspace is not None:
+            context.workspace.status_text_set(None)
+
+
 def _make_active(context: bpy.types.Context, obj: bpy.types.Object) -> None:
     for other in context.selected_objects:
         other.select_set(False)
@@ -85,7 +163,7 @@ def _make_active(context: bpy.types.Context, obj: bpy.types.Object) -> None:
     context.view_layer.objects.active = obj
 
 
-class OBJECT_OT_knitwear_knit(KnitSettingsMixin, bpy.types.Operator):
+class OBJECT_OT_knitwear_knit(_RunsCoreModally, KnitSettingsMixin, bpy.types.Operator):
     """Cover the active NURBS surface or UV-mapped mesh with knitted yarn, as a new object"""
 
     bl_idname = "object.knitwear_knit"
@@ -123,6 +201,17 @@ class OBJECT_OT_knitwear_knit(KnitSettingsMixin, bpy.types.Operator):
             return {"CANCELLED"}
         finally:
             progress.end()
+        return self._finish(context, outcome)
+
+    def _steps(
+        self, context: bpy.types.Context, progress: Callable[[float], None]
+    ) -> Generator[api.CoreJob, Any, api.KnitOutcome]:
+        settings = {name: getattr(self, name) for name in SETTING_NAMES}
+        return api.knit_steps(
+            context.active_object, context=context, progress=progress, **settings
+        )
+
+    def _finish(self, context: bpy.types.Context, outcome: api.KnitOutcome) -> set[str]:
         _make_active(context, outcome.object)
         self.report(_report_level(outcome), _summary(outcome))
         return {"FINISHED"}
@@ -131,7 +220,7 @@ class OBJECT_OT_knitwear_knit(KnitSettingsMixin, bpy.types.Operator):
         draw_settings(self.layout, self, "knitwear_redo")
 
 
-class OBJECT_OT_knitwear_update(bpy.types.Operator):
+class OBJECT_OT_knitwear_update(_RunsCoreModally, bpy.types.Operator):
     """Rebuild the active knit from its source surface with its current settings"""
 
     bl_idname = "object.knitwear_update"
@@ -158,6 +247,14 @@ class OBJECT_OT_knitwear_update(bpy.types.Operator):
             return {"CANCELLED"}
         finally:
             progress.end()
+        return self._finish(context, outcome)
+
+    def _steps(
+        self, context: bpy.types.Context, progress: Callable[[float], None]
+    ) -> Generator[api.CoreJob, Any, api.KnitOutcome]:
+        return api.update_steps(context.active_object, context=context, progress=progress)
+
+    def _finish(self, _context: bpy.types.Context, outcome: api.KnitOutcome) -> set[str]:
         self.report(_report_level(outcome), _summary(outcome))
         return {"FINISHED"}
 
