@@ -264,3 +264,20 @@ def test_a_named_pipe_is_refused_without_waiting_for_a_writer(tmp_path: Path) ->
     os.mkfifo(fifo)
     with pytest.raises(knitwear.PatternError, match="pipe"):
         knitwear.Pattern.from_file(fifo)
+
+
+def test_check_budget_is_the_check_knit_makes_first() -> None:
+    small = knitwear.check_budget(STOCKINETTE, 8, 8)
+    assert small == knitwear.check_budget(STOCKINETTE, 8, 8, ring_segments=6)
+    assert small < knitwear.check_budget(STOCKINETTE, 8, 8, ring_segments=12)
+    with pytest.raises(knitwear.BudgetError, match="stitches would need") as by_check:
+        knitwear.check_budget(STOCKINETTE, 100_000, 140_000)
+    with pytest.raises(knitwear.BudgetError) as by_knit:
+        knitwear.Knit(sheet(), STOCKINETTE, courses=100_000, wales=140_000)
+    assert str(by_check.value) == str(by_knit.value)
+    with pytest.raises(knitwear.BudgetError):
+        knitwear.check_budget(STOCKINETTE, 8, 8, budget_bytes=small - 1)
+    with pytest.raises(knitwear.ParameterError, match="ring_segments"):
+        knitwear.check_budget(STOCKINETTE, 8, 8, ring_segments=1)
+    with pytest.raises(knitwear.ParameterError, match="courses"):
+        knitwear.check_budget(STOCKINETTE, 0, 8)
