@@ -30,7 +30,16 @@ import bpy
 import knitwear
 import numpy as np
 
-from . import animation, core_inputs, material, mesh_build, sampling, source_link, texture
+from . import (
+    animation,
+    core_inputs,
+    material,
+    mesh_build,
+    new_data,
+    sampling,
+    source_link,
+    texture,
+)
 from .properties import KNIT_SETTINGS
 
 #: Called with the fraction done (0..1) between the steps of a knit.
@@ -429,18 +438,21 @@ def knit_steps(
     source = core_inputs.check_source(source, "the object")
     sampled, result, bound, core_s = yield from _core_steps(source, context, settings, progress)
 
-    t_mesh = time.perf_counter()
-    name = f"{source.name}.knit"
-    mesh = mesh_build.new_mesh(name, result)
-    mesh_s = time.perf_counter() - t_mesh
-    material.assign(mesh)
-    obj = bpy.data.objects.new(name, mesh)
-    obj.matrix_world = sampled.matrix
-    collection = source.users_collection[0] if source.users_collection else None
-    (collection or context.scene.collection).objects.link(obj)
-    _store(obj, source, settings, bound)
-    source_link.link_source(obj)
-    textured = _texture_where_needed(source, context, settings, result)
+    # Whatever fails from here on (the texture, last, leaves nothing of its own behind)
+    # takes the knit's datablocks with it.
+    with new_data.removed_on_failure():
+        t_mesh = time.perf_counter()
+        name = f"{source.name}.knit"
+        mesh = mesh_build.new_mesh(name, result)
+        mesh_s = time.perf_counter() - t_mesh
+        material.assign(mesh)
+        obj = bpy.data.objects.new(name, mesh)
+        obj.matrix_world = sampled.matrix
+        collection = source.users_collection[0] if source.users_collection else None
+        (collection or context.scene.collection).objects.link(obj)
+        _store(obj, source, settings, bound)
+        source_link.link_source(obj)
+        textured = _texture_where_needed(source, context, settings, result)
     # The knit follows its source from a frame handler that writes mesh data, which Blender
     # asks to do with the interface locked during renders.
     context.scene.render.use_lock_interface = True
@@ -559,17 +571,45 @@ def update_steps(
     source = core_inputs.check_source(obj.knitwear.source, f"'{obj.name}'")
     sampled, result, bound, core_s = yield from _core_steps(source, context, merged, progress)
 
-    t_mesh = time.perf_counter()
-    mesh = mesh_build.fill_mesh(obj.data, result)
-    mesh_s = time.perf_counter() - t_mesh
-    material.assign(mesh)
-    obj.matrix_world = sampled.matrix
-    _store(obj, source, merged, bound)
-    source_link.link_source(obj)
-    textured = _texture_where_needed(source, context, merged, result)
+    # What fails from here on puts the knit back as it was: its mesh (from a copy), matrix
+    # and stored settings, and removes what the update created.
+    before = (settings_from(obj), bound_of(obj), obj.matrix_world.copy(), obj.data.copy())
+    with new_data.removed_on_failure():
+        try:
+            t_mesh = time.perf_counter()
+            mesh = mesh_build.fill_mesh(obj.data, result)
+            mesh_s = time.perf_counter() - t_mesh
+            material.assign(mesh)
+            obj.matrix_world = sampled.matrix
+            _store(obj, source, merged, bound)
+            source_link.link_source(obj)
+            textured = _texture_where_needed(source, context, merged, result)
+        except BaseException:
+            _put_back(obj, source, *before)
+            raise
+    bpy.data.meshes.remove(before[3])
     if progress:
         progress(1.0)
     return _outcome(obj, result, t_start, core_s, mesh_s, bound, textured)
+
+
+def _put_back(
+    obj: bpy.types.Object,
+    source: bpy.types.Object,
+    settings: Mapping[str, Any],
+    bound: Bound,
+    matrix: Any,
+    mesh: bpy.types.Mesh,
+) -> None:
+    """Knit ``obj`` as it was before a failed update: ``mesh`` (a copy of its mesh then)
+    takes the place of the one it has now, with its name."""
+    live = obj.data
+    name = live.name
+    live.user_remap(mesh)
+    bpy.data.meshes.remove(live)
+    mesh.name = name
+    obj.matrix_world = matrix
+    _store(obj, source, settings, bound)
 
 
 def update_knit(

@@ -11,6 +11,7 @@ nothing the knit reads can change under it. The redo panel, scripts and headless
 `execute`, which knits in one go.
 """
 
+import traceback
 from collections.abc import Callable, Generator
 from typing import Any
 
@@ -84,6 +85,19 @@ def _report_level(outcome: api.KnitOutcome) -> set[str]:
     return {"WARNING"} if outcome.flat_clearance < api.MIN_CLEARANCE else {"INFO"}
 
 
+def _failure(err: Exception) -> str:
+    """The report of a failed knit: a `knitwear.KnitError`'s own message (the user can fix
+    what it names); anything else is a bug, reported as one, its traceback on the console.
+    Either way the steps have left the scene as it was."""
+    if isinstance(err, knitwear.KnitError):
+        return str(err)
+    traceback.print_exception(err)
+    return (
+        f"Knitwear failed unexpectedly ({type(err).__name__}: {err}); nothing was changed. "
+        "Please report it with the traceback from the system console"
+    )
+
+
 #: Seconds between the modal operators' looks at the core's worker thread.
 POLL_SECONDS = 0.05
 
@@ -111,9 +125,9 @@ class _RunsCoreModally:
         self._runner = core_thread.StepsOnThread(self._steps(bpy.context, self._progress.update))
         try:
             self._runner.start()
-        except knitwear.KnitError as err:
+        except Exception as err:
             self._progress.end()
-            self.report({"ERROR"}, str(err))  # type: ignore[attr-defined]
+            self.report({"ERROR"}, _failure(err))  # type: ignore[attr-defined]
             return {"CANCELLED"}
         wm = context.window_manager
         self._timer = wm.event_timer_add(POLL_SECONDS, window=context.window)
@@ -136,9 +150,9 @@ class _RunsCoreModally:
             self._end(context)
             self.report({"INFO"}, "Knitting cancelled: nothing was changed")  # type: ignore[attr-defined]
             return {"CANCELLED"}
-        except knitwear.KnitError as err:
+        except Exception as err:
             self._end(context)
-            self.report({"ERROR"}, str(err))  # type: ignore[attr-defined]
+            self.report({"ERROR"}, _failure(err))  # type: ignore[attr-defined]
             return {"CANCELLED"}
         except BaseException:
             self._end(context)
@@ -196,8 +210,8 @@ class OBJECT_OT_knitwear_knit(_RunsCoreModally, KnitSettingsMixin, bpy.types.Ope
             outcome = api.knit(
                 context.active_object, context=context, progress=progress.update, **settings
             )
-        except knitwear.KnitError as err:
-            self.report({"ERROR"}, str(err))
+        except Exception as err:
+            self.report({"ERROR"}, _failure(err))
             return {"CANCELLED"}
         finally:
             progress.end()
@@ -242,8 +256,8 @@ class OBJECT_OT_knitwear_update(_RunsCoreModally, bpy.types.Operator):
         progress = _Progress(context)
         try:
             outcome = api.update(context.active_object, context=context, progress=progress.update)
-        except knitwear.KnitError as err:
-            self.report({"ERROR"}, str(err))
+        except Exception as err:
+            self.report({"ERROR"}, _failure(err))
             return {"CANCELLED"}
         finally:
             progress.end()
