@@ -140,6 +140,77 @@ struct Found<'a> {
     expected: Option<(Rule, bool)>,
 }
 
+/// Items (segments) bucketed by the grid cells their bounding boxes cover, in item order
+/// within each cell: a dense grid over the cells used, its lists packed one after another
+/// (counted first, then filled: no per-cell allocation, no hashing).
+struct CellGrid {
+    /// The lowest cell used, and the grid's size in cells.
+    origin: (i64, i64),
+    size: (i64, i64),
+    /// Where each cell's list starts in `items` (one more entry than cells).
+    starts: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl CellGrid {
+    /// `boxes[i]`: the lowest and highest cell (x, y) item `i` covers, inclusive.
+    fn new(boxes: impl Iterator<Item = ((i64, i64), (i64, i64))> + Clone) -> Self {
+        let (mut lo, mut hi) = ((i64::MAX, i64::MAX), (i64::MIN, i64::MIN));
+        for (a, b) in boxes.clone() {
+            lo = (lo.0.min(a.0), lo.1.min(a.1));
+            hi = (hi.0.max(b.0), hi.1.max(b.1));
+        }
+        if lo.0 > hi.0 {
+            return Self {
+                origin: (0, 0),
+                size: (0, 0),
+                starts: vec![0],
+                items: Vec::new(),
+            };
+        }
+        let size = (hi.0 - lo.0 + 1, hi.1 - lo.1 + 1);
+        let index = |x: i64, y: i64| ((x - lo.0) * size.1 + (y - lo.1)) as usize;
+        let mut starts = vec![0u32; (size.0 * size.1) as usize + 1];
+        for (a, b) in boxes.clone() {
+            for x in a.0..=b.0 {
+                for y in a.1..=b.1 {
+                    starts[index(x, y) + 1] += 1;
+                }
+            }
+        }
+        for c in 1..starts.len() {
+            starts[c] += starts[c - 1];
+        }
+        let mut fill = starts.clone();
+        let mut items = vec![0u32; *starts.last().unwrap_or(&0) as usize];
+        for (i, (a, b)) in boxes.enumerate() {
+            for x in a.0..=b.0 {
+                for y in a.1..=b.1 {
+                    let c = index(x, y);
+                    items[fill[c] as usize] = i as u32;
+                    fill[c] += 1;
+                }
+            }
+        }
+        Self {
+            origin: lo,
+            size,
+            starts,
+            items,
+        }
+    }
+
+    /// The items in cell (x, y), in item order (none outside the grid).
+    fn cell(&self, x: i64, y: i64) -> &[u32] {
+        let (gx, gy) = (x - self.origin.0, y - self.origin.1);
+        if !(0..self.size.0).contains(&gx) || !(0..self.size.1).contains(&gy) {
+            return &[];
+        }
+        let c = (gx * self.size.1 + gy) as usize;
+        &self.items[self.starts[c] as usize..self.starts[c + 1] as usize]
+    }
+}
+
 /// Calls `visit` on every crossing of the (u, v) projections of `pieces`' centrelines
 /// `lines` (in (u, v, lambda), `samples_per_loop` per stitch).
 fn for_each_crossing(
@@ -156,39 +227,28 @@ fn for_each_crossing(
     // A uniform grid over (u, v) with cells of one stitch.
     let cell = lattice.tile;
     let key = |p: Vec2| ((p.x / cell.x).floor() as i64, (p.y / cell.y).floor() as i64);
-    let mut grid: std::collections::HashMap<(i64, i64), Vec<usize>> =
-        std::collections::HashMap::new();
-    for (i, s) in segs.iter().enumerate() {
-        let (lo, hi) = (
-            s.a.truncate().min(s.b.truncate()),
-            s.a.truncate().max(s.b.truncate()),
-        );
-        let (k0, k1) = (key(lo), key(hi));
-        for x in k0.0..=k1.0 {
-            for y in k0.1..=k1.1 {
-                grid.entry((x, y)).or_default().push(i);
-            }
-        }
-    }
+    let cells_of = |s: &Seg| {
+        let (a, b) = (s.a.truncate(), s.b.truncate());
+        (key(a.min(b)), key(a.max(b)))
+    };
+    let grid = CellGrid::new(segs.iter().map(cells_of));
     let columns = (period / cell.x).round() as i64;
-    let mut seen = std::collections::HashSet::new();
+    // The (segment, wrap) pairs already visited from segment `i`: a pair of segments that
+    // share several cells is met in each.
+    let mut seen: Vec<(usize, i64)> = Vec::new();
     for (i, s) in segs.iter().enumerate() {
-        let (lo, hi) = (
-            s.a.truncate().min(s.b.truncate()),
-            s.a.truncate().max(s.b.truncate()),
-        );
-        let (k0, k1) = (key(lo), key(hi));
+        seen.clear();
+        let (k0, k1) = cells_of(s);
         for x in k0.0..=k1.0 {
             for y in k0.1..=k1.1 {
                 let shifts: &[i64] = if lattice.cyclic_u { &[0, -1, 1] } else { &[0] };
                 for &wrap in shifts {
-                    let Some(list) = grid.get(&(x + wrap * columns, y)) else {
-                        continue;
-                    };
-                    for &k in list {
-                        if k <= i || !seen.insert((i, k, wrap)) {
+                    for &k in grid.cell(x + wrap * columns, y) {
+                        let k = k as usize;
+                        if k <= i || seen.contains(&(k, wrap)) {
                             continue;
                         }
+                        seen.push((k, wrap));
                         let o = &segs[k];
                         if o.piece == s.piece && o.index.abs_diff(s.index) < 2 {
                             continue;
