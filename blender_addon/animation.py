@@ -12,6 +12,8 @@ evaluating the object at a few frames of the range and comparing.
 import bpy
 import numpy as np
 
+from . import blender_compat
+
 #: Modifiers that change the geometry with time by themselves.
 TIME_MODIFIERS = frozenset(
     {
@@ -49,10 +51,10 @@ def _referenced_objects(item: bpy.types.bpy_struct) -> list[bpy.types.Object]:
     for target in getattr(item, "targets", ()):
         if isinstance(getattr(target, "target", None), bpy.types.Object):
             found.append(target.target)
-    # A Geometry Nodes modifier keeps its inputs (an Object socket among them) as ID
-    # properties.
+    # A Geometry Nodes modifier keeps its inputs (an Object socket among them) apart.
     if isinstance(item, bpy.types.NodesModifier):
-        found += [value for value in item.values() if isinstance(value, bpy.types.Object)]
+        values = blender_compat.node_input_values(item)
+        found += [value for value in values if isinstance(value, bpy.types.Object)]
     return found
 
 

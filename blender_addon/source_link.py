@@ -3,6 +3,8 @@ modifier on the knit that reads the source with an Object Info node."""
 
 import bpy
 
+from . import blender_compat
+
 #: The modifier on each knit that keeps its source evaluated in every depsgraph (below).
 LINK_MODIFIER = "Knitwear Source Link"
 #: Its node group, shared by all knits (dot-prefixed: hidden in the UI).
@@ -41,4 +43,5 @@ def link_source(obj: bpy.types.Object) -> None:
         modifier.show_expanded = False
     group = _link_group()
     modifier.node_group = group
-    modifier[group.interface.items_tree["Source"].identifier] = obj.knitwear.source
+    identifier = group.interface.items_tree["Source"].identifier
+    blender_compat.set_node_input(modifier, identifier, obj.knitwear.source)

@@ -14,6 +14,26 @@ if [ ! -x .venv/bin/python ]; then
 fi
 .venv/bin/python -m pip install -q --disable-pip-version-check -r requirements-dev.txt
 
+# Blender 5.2, the newest, for a smoke run beside the suite's 5.0 (its bpy needs Python 3.13:
+# PYTHON313, or python3.13 on PATH, or pyenv's). Missing is an error, not a skip.
+# A pyenv shim on PATH may exist and fail to run: each candidate must run as 3.13.
+PY313=""
+for candidate in ${PYTHON313:-} "${PYENV_ROOT:-$HOME/.pyenv}"/versions/3.13*/bin/python3.13 python3.13; do
+  if "$candidate" -c 'import sys; assert sys.version_info[:2] == (3, 13)' 2>/dev/null; then
+    PY313=$candidate
+    break
+  fi
+done
+if [ -z "$PY313" ]; then
+  echo "bootstrap: Python 3.13 not found (for Blender 5.2's bpy): install it (pyenv install 3.13) or set PYTHON313" >&2
+  exit 1
+fi
+if [ ! -x .venv-blender52/bin/python ]; then
+  echo "bootstrap: creating .venv-blender52 with $PY313"
+  "$PY313" -m venv .venv-blender52
+fi
+.venv-blender52/bin/python -m pip install -q --disable-pip-version-check -r requirements-blender52.txt
+
 echo "bootstrap: building the core wheel (release)"
 rm -rf build/wheels
 .venv/bin/maturin build --release --quiet -o build/wheels

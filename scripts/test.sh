@@ -22,3 +22,6 @@ PYTHONPATH="$root/build/site" .venv/bin/python -m pytest -q tests/python/core
 
 echo "== pytest: extension in headless Blender"
 .venv/bin/python -m pytest -q tests/python/blender
+
+echo "== smoke: the extension in Blender 5.2"
+.venv-blender52/bin/python scripts/smoke_blender.py
