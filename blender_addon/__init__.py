@@ -7,7 +7,22 @@ package this extension bundles as a wheel.
 
 import bpy
 
-from . import bake, follow, operators, panels, plush, properties, texture
+
+# The `poll` functions of the add-on's object pointers live here, in the package itself, and
+# are defined before the submodules that use them are imported: bpy 4.2 segfaults at exit
+# (rc 139, after everything worked) when a PointerProperty's poll is a function of a
+# submodule.
+def poll_knit_source(_self: bpy.types.PropertyGroup, obj: bpy.types.Object) -> bool:
+    """What a knit's Source may be: a NURBS surface or a mesh that is not itself a knit."""
+    return obj.type in {"SURFACE", "MESH"} and not obj.knitwear.is_knit
+
+
+def poll_plush_source(_self: bpy.types.PropertyGroup, obj: bpy.types.Object) -> bool:
+    """What a plush's Source may be: a NURBS surface or a mesh."""
+    return obj.type in {"SURFACE", "MESH"}
+
+
+from . import bake, follow, operators, panels, plush, properties, texture  # noqa: E402
 
 _CLASSES: tuple[type, ...] = (
     operators.OBJECT_OT_knitwear_knit,

@@ -21,6 +21,7 @@ from bpy.props import (
     StringProperty,
 )
 
+from . import poll_knit_source
 from .core_settings import from_core
 from .settings_schema import SettingsSchema
 
@@ -308,10 +309,6 @@ class KnitSettingsMixin:
     cull_hidden_samples: IntProperty(**from_core("cull_hidden_samples"))
 
 
-def _poll_source(_self: bpy.types.PropertyGroup, obj: bpy.types.Object) -> bool:
-    return obj.type in {"SURFACE", "MESH"} and not obj.knitwear.is_knit
-
-
 class KnitwearSettings(KnitSettingsMixin, bpy.types.PropertyGroup):
     """``obj.knitwear``: whether an object is a knit, what it was knitted from, and how."""
 
@@ -324,7 +321,7 @@ class KnitwearSettings(KnitSettingsMixin, bpy.types.PropertyGroup):
         name="Source",
         description="The NURBS surface or UV-mapped mesh this knit follows",
         type=bpy.types.Object,
-        poll=_poll_source,
+        poll=poll_knit_source,
     )
     follow_source: BoolProperty(
         name="Follow Source",

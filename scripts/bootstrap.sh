@@ -8,31 +8,42 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
 PY=${PYTHON:-python3}
+# Blender versions smoke-tested beside the suite's (see below and scripts/test.sh).
+SMOKE_BLENDERS="42:3.11 45:3.11 52:3.13"
 if [ ! -x .venv/bin/python ]; then
   echo "bootstrap: creating .venv"
   "$PY" -m venv .venv
 fi
 .venv/bin/python -m pip install -q --disable-pip-version-check -r requirements-dev.txt
 
-# Blender 5.2, the newest, for a smoke run beside the suite's 5.0 (its bpy needs Python 3.13:
-# PYTHON313, or python3.13 on PATH, or pyenv's). Missing is an error, not a skip.
-# A pyenv shim on PATH may exist and fail to run: each candidate must run as 3.13.
-PY313=""
-for candidate in ${PYTHON313:-} "${PYENV_ROOT:-$HOME/.pyenv}"/versions/3.13*/bin/python3.13 python3.13; do
-  if "$candidate" -c 'import sys; assert sys.version_info[:2] == (3, 13)' 2>/dev/null; then
-    PY313=$candidate
-    break
+# Other Blender versions for a smoke run each (scripts/smoke_blender.py), beside the suite's
+# 5.0: <version>:<the Python its bpy needs>, pinned in requirements-blender<version>.txt. The
+# Python is taken from PYTHON<major><minor> (PYTHON313), pyenv or PATH; a missing one is an
+# error, not a skip.
+find_python() {
+  local want=$1 override="PYTHON${1//./}" candidate
+  for candidate in ${!override:-} "${PYENV_ROOT:-$HOME/.pyenv}"/versions/"$want".*/bin/python"$want" python"$want"; do
+    # A pyenv shim on PATH may exist and still fail to run: each candidate must run as $want.
+    if "$candidate" -c "import sys; assert '%d.%d' % sys.version_info[:2] == '$want'" 2>/dev/null; then
+      echo "$candidate"
+      return 0
+    fi
+  done
+  return 1
+}
+for spec in $SMOKE_BLENDERS; do
+  version=${spec%%:*} python=${spec#*:}
+  venv=.venv-blender$version
+  if [ ! -x "$venv/bin/python" ]; then
+    interpreter=$(find_python "$python") || {
+      echo "bootstrap: Python $python not found (for the bpy of Blender $version): install it (pyenv install $python) or set PYTHON${python//./}" >&2
+      exit 1
+    }
+    echo "bootstrap: creating $venv with $interpreter"
+    "$interpreter" -m venv "$venv"
   fi
+  "$venv/bin/python" -m pip install -q --disable-pip-version-check -r "requirements-blender$version.txt"
 done
-if [ -z "$PY313" ]; then
-  echo "bootstrap: Python 3.13 not found (for Blender 5.2's bpy): install it (pyenv install 3.13) or set PYTHON313" >&2
-  exit 1
-fi
-if [ ! -x .venv-blender52/bin/python ]; then
-  echo "bootstrap: creating .venv-blender52 with $PY313"
-  "$PY313" -m venv .venv-blender52
-fi
-.venv-blender52/bin/python -m pip install -q --disable-pip-version-check -r requirements-blender52.txt
 
 echo "bootstrap: building the core wheel (release)"
 rm -rf build/wheels

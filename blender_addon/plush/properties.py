@@ -14,6 +14,7 @@ from bpy.props import (
     StringProperty,
 )
 
+from .. import poll_plush_source
 from ..core_settings import from_core
 from ..settings_schema import SettingsSchema
 
@@ -118,10 +119,6 @@ PLUSH_SETTINGS = SettingsSchema(
 SETTING_NAMES: tuple[str, ...] = PLUSH_SETTINGS.names
 
 
-def _poll_source(_self: bpy.types.PropertyGroup, obj: bpy.types.Object) -> bool:
-    return obj.type in {"SURFACE", "MESH"}
-
-
 class PlushSettings(PlushSettingsMixin, bpy.types.PropertyGroup):
     """A plush object's settings (``Object.knitwear_plush``), kept to re-grow it."""
 
@@ -129,7 +126,7 @@ class PlushSettings(PlushSettingsMixin, bpy.types.PropertyGroup):
     source: PointerProperty(
         name="Source",
         type=bpy.types.Object,
-        poll=_poll_source,
+        poll=poll_plush_source,
         description="The surface this plush grows on",
     )
     follow_camera: BoolProperty(
