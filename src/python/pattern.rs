@@ -75,8 +75,8 @@ fn parsed(
 impl PyPattern {
     /// A named preset; see `Pattern.presets()`.
     #[staticmethod]
-    fn preset(name: &str) -> PyResult<Self> {
-        StitchPattern::preset(name)
+    fn preset(name: &Bound<'_, PyAny>) -> PyResult<Self> {
+        StitchPattern::preset(&text_arg(name, "the preset name")?)
             .map(|inner| Self { inner })
             .map_err(to_py)
     }
@@ -176,16 +176,21 @@ pub struct PyColorPattern {
 #[pymethods]
 impl PyColorPattern {
     #[new]
-    #[pyo3(signature = (palette, chart="0"))]
-    fn new(palette: Vec<Vec<f32>>, chart: &str) -> PyResult<Self> {
-        ColorPattern::new(palette_of(palette)?, chart)
+    #[pyo3(signature = (palette, chart=None))]
+    fn new(palette: Vec<Vec<f32>>, chart: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
+        // No chart: one colour, the palette's first.
+        let chart = match chart {
+            Some(c) => text_arg(c, "the colour chart")?,
+            None => "0".to_owned(),
+        };
+        ColorPattern::new(palette_of(palette)?, &chart)
             .map(|inner| Self { inner })
             .map_err(to_py)
     }
     /// A named colour chart (see `ColorPattern.presets()`) in the given palette.
     #[staticmethod]
-    fn preset(name: &str, palette: Vec<Vec<f32>>) -> PyResult<Self> {
-        crate::pattern::color_preset(name, palette_of(palette)?)
+    fn preset(name: &Bound<'_, PyAny>, palette: Vec<Vec<f32>>) -> PyResult<Self> {
+        crate::pattern::color_preset(&text_arg(name, "the colour preset name")?, palette_of(palette)?)
             .map(|inner| Self { inner })
             .map_err(to_py)
     }
