@@ -146,6 +146,7 @@ def core_settings(settings: Mapping[str, Any], scene: bpy.types.Scene) -> dict[s
         "fluffiness": float(settings["fluffiness"]),
         "ring_segments": int(settings["ring_segments"]),
         "plies": int(settings["plies"]),
+        "live_loops": bool(settings["live_loops"]),
         "samples_per_loop": int(settings["samples_per_loop"]),
         "tension": float(settings["tension"]),
         "kappa": float(settings["kappa"]),

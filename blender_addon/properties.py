@@ -220,6 +220,7 @@ class KnitSettingsMixin:
     fluffiness: FloatProperty(**from_core("fluffiness", soft_max=1.0, subtype="FACTOR"))
     ring_segments: IntProperty(**from_core("ring_segments", soft_max=16))
     plies: IntProperty(**from_core("plies"))
+    live_loops: BoolProperty(**from_core("live_loops"))
     samples_per_loop: IntProperty(**from_core("samples_per_loop", soft_max=48))
     tension: FloatProperty(**from_core("tension", subtype="FACTOR"))
     kappa: FloatProperty(**from_core("kappa", step=0.05, precision=4))

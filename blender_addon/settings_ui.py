@@ -25,6 +25,7 @@ def _size(layout: bpy.types.UILayout, settings: bpy.types.AnyType) -> None:
         col.prop(settings, "courses")
         col.prop(settings, "wales")
     layout.prop(settings, "direction")
+    layout.prop(settings, "live_loops")
 
 
 def _yarn(layout: bpy.types.UILayout, settings: bpy.types.AnyType) -> None:

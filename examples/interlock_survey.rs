@@ -58,11 +58,12 @@ fn main() {
         );
         let cl = out.stats.clearance.unwrap();
         println!(
-            "{name:20} interlock {}/{} ({:.3}) buckets {}/{} other {}/{} undecided {} clearance {:.3} p01 {:.3} cover {:.3} prep {:.2}s",
+            "{name:20} interlock {}/{} ({:.3}) buckets {}/{} other {}/{} undecided {} free loops {}/{} free feet {}/{} clearance {:.3} p01 {:.3} cover {:.3} prep {:.2}s",
             order.interlock_agree, order.interlock_decided, order.interlock(),
             order.buckets_half_front, order.buckets,
             order.agree - order.interlock_agree, order.decided - order.interlock_decided,
-            order.undecided, cl.0, cl.1, c, prep
+            order.undecided, order.free_loops, order.loops, order.free_feet, order.feet,
+            cl.0, cl.1, c, prep
         );
         if let Some(d) = &order.first_disagreement {
             println!("    first: {d}");

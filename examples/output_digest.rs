@@ -1,5 +1,5 @@
-//! A digest of every preset's knit on a small sheet at default settings and the add-on's
-//! irregularity: what `tests/golden_output.rs` holds against change (its
+//! Digests of every preset's knit on a small sheet at default settings and the add-on's
+//! irregularity, with live loops and finished: what `tests/golden_output.rs` holds against change (its
 //! `GOLDEN` table is this example's output).
 //! `cargo run --release --example output_digest [preset...]`
 use knitwear::knit::{KnitParams, PreparedKnit};
@@ -39,18 +39,22 @@ fn main() {
             None => (name.as_str(), None),
         };
         let pattern = StitchPattern::preset(preset).unwrap();
-        let p = KnitParams {
-            kappa: 0.005,
-            colors,
-            ..KnitParams::default()
-        };
         let t = std::time::Instant::now();
-        let knit = PreparedKnit::new(&plane, &pattern, &p).unwrap();
-        let out = knit.build(&plane).unwrap();
+        // Live loops (the fabric alone), then finished with a cast-on and a bind-off.
+        let digests = [true, false].map(|live_loops| {
+            let p = KnitParams {
+                kappa: 0.005,
+                colors: colors.clone(),
+                live_loops,
+                ..KnitParams::default()
+            };
+            let knit = PreparedKnit::new(&plane, &pattern, &p).unwrap();
+            digest(&knit.build(&plane).unwrap())
+        });
         println!(
-            "{name:20} {:016x} {} triangles {:.1}s",
-            digest(&out),
-            out.triangles.len() / 3,
+            "    (\"{name}\", 0x{:016x}, 0x{:016x}), // {:.1}s",
+            digests[0],
+            digests[1],
             t.elapsed().as_secs_f64()
         );
     }

@@ -268,6 +268,13 @@ pub const PLIES: Setting = Setting {
     ..int("plies", "Plies", 1.0, (1.0, 8.0))
 };
 
+/// Whether the first and last courses keep their loops live ([`crate::skeleton::edges`]).
+pub const LIVE_LOOPS: Setting = Setting {
+    doc: "Leave the loops of the first and last courses live, as on the needles, instead of \
+          finishing the fabric with a cast-on and a bind-off edge (surfaces open along v)",
+    ..boolean("live_loops", "Live Loops", false)
+};
+
 pub const SAMPLES_PER_LOOP: Setting = Setting {
     unit: "rings per stitch",
     doc: "Rings along the yarn per stitch loop (more = smoother curves, heavier)",
@@ -399,6 +406,7 @@ pub const KNIT_SETTINGS: &[Setting] = &[
     FLUFFINESS,
     RING_SEGMENTS,
     PLIES,
+    LIVE_LOOPS,
     SAMPLES_PER_LOOP,
     TENSION,
     KAPPA,

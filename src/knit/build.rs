@@ -119,6 +119,7 @@ impl PreparedKnit {
             out.stats.clearance = Some(measure(&out));
             let order = self.crossing_order(surface)?;
             out.stats.interlock = Some((order.interlock_decided, order.interlock_agree));
+            out.stats.free_loops = Some((order.free_loops, order.free_feet));
         }
         Ok(out)
     }

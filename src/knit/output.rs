@@ -34,6 +34,10 @@ pub struct KnitStats {
     /// pattern says in front ([`crate::skeleton::crossings`]). Equal numbers: every course
     /// interlocks with the one below, stitch by stitch.
     pub interlock: Option<(usize, usize)>,
+    /// Loops that nothing is pulled through and stitches pulled through no loop, if measured
+    /// (with the interlock): 0 and 0 where the fabric is finished with a cast-on and a
+    /// bind-off ([`crate::skeleton::crossings::CrossingOrder::free_loops`]).
+    pub free_loops: Option<(usize, usize)>,
     /// Seconds spent in the core.
     pub seconds: f64,
     /// A key of the mesh topology (triangles, edges, their order): equal keys mean identical

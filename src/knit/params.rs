@@ -55,6 +55,9 @@ pub struct KnitParams {
     pub ring_segments: usize,
     /// Plies twisted round each other ([`crate::geometry::plies`]), 1..=8. Default: 1.
     pub plies: usize,
+    /// Leave the first and last courses' loops live: no cast-on or bind-off
+    /// ([`crate::skeleton::edges`]). Default: false.
+    pub live_loops: bool,
     /// Centreline samples per stitch, 6..=256. Default: 16.
     pub samples_per_loop: usize,
     /// Cardinal spline tension, 0..1 (0: Catmull-Rom). Default: 0.
@@ -93,6 +96,7 @@ impl Default for KnitParams {
             fluffiness: s::FLUFFINESS.default_f32(),
             ring_segments: s::RING_SEGMENTS.default_usize(),
             plies: s::PLIES.default_usize(),
+            live_loops: s::LIVE_LOOPS.default == Some(1.0),
             samples_per_loop: s::SAMPLES_PER_LOOP.default_usize(),
             tension: s::TENSION.default_f32(),
             kappa: s::KAPPA.default_f32(),

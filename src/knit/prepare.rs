@@ -225,7 +225,8 @@ impl PreparedKnit {
                 samples_per_loop: s,
                 tension: p.tension,
             },
-        );
+        )
+        .with_live_loops(p.live_loops);
         // The tuning (the first knit of a pattern: seconds) stops early on request.
         crate::cancel::check()?;
         let flat_clearance = skeleton.flat_clearance();
@@ -245,7 +246,11 @@ impl PreparedKnit {
         let (full_pieces, built, built_count) = run_in_pool(p.threads, || {
             let built = skeleton.built_stitches(surface);
             let count = built.iter().filter(|b| **b).count();
-            (skeleton.pieces(&built, pattern, float_colors), built, count)
+            (
+                skeleton.pieces(&built, &built, pattern, float_colors),
+                built,
+                count,
+            )
         })?;
         crate::cancel::check()?;
         let triangles_full_detail: usize = full_pieces
@@ -272,7 +277,7 @@ impl PreparedKnit {
                 let reach = radius * (3.0 + p.fluffiness);
                 let levels = stitch_levels(surface, lattice, &built, d, reach)?;
                 let kept: Vec<bool> = levels.iter().map(|l| l.is_built()).collect();
-                let pieces = skeleton.pieces(&kept, pattern, float_colors);
+                let pieces = skeleton.pieces(&kept, &built, pattern, float_colors);
                 let spl = |level: Level| d.level_settings(level, full).samples_per_loop;
                 let spans: Vec<Span> = pieces
                     .par_iter()

@@ -73,6 +73,7 @@ pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResul
     stats.set_item("clearance_min", s.clearance.map(|c| c.0))?;
     stats.set_item("clearance_p01", s.clearance.map(|c| c.1))?;
     stats.set_item("interlock", s.interlock)?;
+    stats.set_item("free_loops", s.free_loops)?;
     stats.set_item("seconds", s.seconds)?;
     stats.set_item("topology_key", s.topology_key)?;
     let levels = PyDict::new(py);
@@ -142,6 +143,7 @@ pub(crate) fn params_from(
     fluffiness: f32,
     ring_segments: i128,
     plies: i128,
+    live_loops: bool,
     samples_per_loop: i128,
     tension: f32,
     kappa: f32,
@@ -187,6 +189,7 @@ pub(crate) fn params_from(
         fluffiness,
         ring_segments: positive("ring_segments", ring_segments)?,
         plies: positive("plies", plies)?,
+        live_loops,
         samples_per_loop: positive("samples_per_loop", samples_per_loop)?,
         tension,
         kappa,
@@ -219,7 +222,8 @@ impl PyKnit {
     #[new]
     #[pyo3(signature = (
         surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
-        stitch_size=None, fluffiness=0.5, ring_segments=6, plies=1, samples_per_loop=16, tension=0.0,
+        stitch_size=None, fluffiness=0.5, ring_segments=6, plies=1, live_loops=false, samples_per_loop=16,
+        tension=0.0,
         kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
         budget_bytes=None, measure_clearance=false, camera=None, stitch_levels=None, detail_px=None,
         mid_quality=None, far_quality=None, frustum_margin=0.1, cull_back_faces=false,
@@ -238,6 +242,7 @@ impl PyKnit {
         fluffiness: f32,
         #[pyo3(from_py_with = int_arg)] ring_segments: i128,
         #[pyo3(from_py_with = int_arg)] plies: i128,
+        live_loops: bool,
         #[pyo3(from_py_with = int_arg)] samples_per_loop: i128,
         tension: f32,
         kappa: f32,
@@ -269,6 +274,7 @@ impl PyKnit {
             fluffiness,
             ring_segments,
             plies,
+            live_loops,
             samples_per_loop,
             tension,
             kappa,

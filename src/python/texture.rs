@@ -18,8 +18,8 @@ use crate::texture::knit_texture as core_texture;
 #[pyfunction]
 #[pyo3(signature = (
     surface, pattern, *, width=1024, height=1024, courses=None, wales=None, gauge=None,
-    yarn_radius=None, stitch_size=None, fluffiness=0.5, ring_segments=6, plies=1, samples_per_loop=16,
-    tension=0.0, kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15,
+    yarn_radius=None, stitch_size=None, fluffiness=0.5, ring_segments=6, plies=1, live_loops=false,
+    samples_per_loop=16, tension=0.0, kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15,
     threads=None, budget_bytes=None, measure_clearance=false
 ))]
 #[allow(clippy::too_many_arguments)]
@@ -37,6 +37,7 @@ fn knit_texture(
     fluffiness: f32,
     #[pyo3(from_py_with = int_arg)] ring_segments: i128,
     #[pyo3(from_py_with = int_arg)] plies: i128,
+    live_loops: bool,
     #[pyo3(from_py_with = int_arg)] samples_per_loop: i128,
     tension: f32,
     kappa: f32,
@@ -58,6 +59,7 @@ fn knit_texture(
         fluffiness,
         ring_segments,
         plies,
+        live_loops,
         samples_per_loop,
         tension,
         kappa,

@@ -41,6 +41,7 @@ pub fn bobble_pieces(lattice: &Lattice, built: &[bool], pattern: &StitchPattern)
                     float_layer: 0,
                     bobble: true,
                     density: 1,
+                    edge: None,
                 });
             }
         }

@@ -36,6 +36,7 @@
 
 use glam::{Vec2, Vec3};
 
+use super::edges::Edge;
 use super::stitch_shape::landing;
 use super::{YarnPiece, KEY_POINTS};
 use crate::lattice::Lattice;
@@ -59,6 +60,18 @@ pub struct CrossingOrder {
     /// quarters of theirs. A stacked course scores 0 here whatever its depths.
     pub buckets: usize,
     pub buckets_half_front: usize,
+    /// Loops (of the fabric, slipped stitches' floats aside, and of its cast-on and bind-off),
+    /// and those of them that nothing
+    /// holds: no yarn is pulled through them (no interlock crossing agrees where they are
+    /// the lower yarn; for a bind-off loop, no chain crossing agrees). The last loop of an
+    /// open bind-off, its fastened-off end, is not counted. Live loops at an edge are free.
+    pub loops: usize,
+    pub free_loops: usize,
+    /// Stitches pulled through a loop (all of the fabric's but yarn-overs, made stitches
+    /// and slipped stitches, which are not), and those of them pulled through none: the
+    /// first course's feet without a cast-on.
+    pub feet: usize,
+    pub free_feet: usize,
     /// The first disagreement found, described, for a test's message.
     pub first_disagreement: Option<String>,
 }
@@ -105,6 +118,10 @@ struct Seg {
     float: bool,
     /// Part of a bobble's ball.
     knot: bool,
+    /// Part of a cast-on or bind-off ([`super::edges`]) of `course`.
+    edge: Option<Edge>,
+    /// The row the yarn is in: `course`, one less for a cast-on and one more for a bind-off.
+    row: isize,
 }
 
 /// What decides a crossing.
@@ -311,8 +328,11 @@ pub fn crossing_order(
     let columns = (period / cell.x).round() as i64;
     let mut result = CrossingOrder::default();
     // Interlock crossings per (lower course, column): (upper in front, all).
-    let mut buckets: std::collections::BTreeMap<(usize, i64), (usize, usize)> =
+    let mut buckets: std::collections::BTreeMap<(isize, i64), (usize, usize)> =
         std::collections::BTreeMap::new();
+    // Stitches by (row, wale) whose loop is held and whose foot is pulled through a loop.
+    let mut held = std::collections::BTreeSet::new();
+    let mut pulled = std::collections::BTreeSet::new();
     for_each_crossing(lattice, pattern, pieces, lines, samples_per_loop, |f| {
         let (s, o, at) = (f.s, f.o, f.at);
         let (ls, lo_) = f.depths;
@@ -324,14 +344,23 @@ pub fn crossing_order(
         result.decided += 1;
         let agree = s_in_front == s_front;
         result.agree += usize::from(agree);
+        if agree && rule == Rule::Stitch && s.edge == Some(Edge::BindOff) && s.edge == o.edge {
+            // The chain: the bind-off loop whose head the next one's leg passes.
+            let head = if s.part == Part::Head { s } else { o };
+            held.insert((head.row, head.wale));
+        }
         if rule == Rule::Interlock {
             result.interlock_decided += 1;
             result.interlock_agree += usize::from(agree);
-            let (upper_front, lower) = if s.course > o.course {
-                (s_in_front, o.course)
+            let (upper_front, lower, upper_seg, lower_seg) = if s.row > o.row {
+                (s_in_front, o.row, s, o)
             } else {
-                (!s_in_front, s.course)
+                (!s_in_front, s.row, o, s)
             };
+            if agree {
+                held.insert((lower_seg.row, lower_seg.wale));
+                pulled.insert((upper_seg.row, upper_seg.wale));
+            }
             let column = (at.x / cell.x).floor() as i64;
             let column = if lattice.cyclic_u {
                 column.rem_euclid(columns)
@@ -356,6 +385,41 @@ pub fn crossing_order(
             ));
         }
     });
+    for pc in pieces {
+        if pc.float_color.is_some() || pc.bobble {
+            continue;
+        }
+        let row = pc.course as isize
+            + match pc.edge {
+                Some(Edge::CastOn) => -1,
+                Some(Edge::BindOff) => 1,
+                None => 0,
+            };
+        for j in 0..pc.stitches {
+            let wale = (pc.first_wale + j) % lattice.wales;
+            let fastened = pc.edge == Some(Edge::BindOff) && !pc.closed && j + 1 == pc.stitches;
+            let form = pattern.stitch(pc.course, wale).form;
+            // A slipped stitch's float is no loop, nor is the cast-on's strand under a
+            // yarn-over or a made stitch.
+            let float = match pc.edge {
+                None => matches!(form, Form::Slip { .. }),
+                Some(Edge::CastOn) => matches!(form, Form::YarnOver | Form::MakeOne),
+                Some(Edge::BindOff) => false,
+            };
+            if !fastened && !float {
+                result.loops += 1;
+                result.free_loops += usize::from(!held.contains(&(row, wale)));
+            }
+            let no_loop_below = matches!(
+                pattern.stitch(pc.course, wale).form,
+                Form::YarnOver | Form::MakeOne | Form::Slip { .. }
+            );
+            if pc.edge.is_none() && !no_loop_below {
+                result.feet += 1;
+                result.free_feet += usize::from(!pulled.contains(&(row, wale)));
+            }
+        }
+    }
     result.buckets = buckets.len();
     result.buckets_half_front = buckets
         .values()
@@ -424,6 +488,13 @@ fn segments(
                 part,
                 float: pc.float_color.is_some(),
                 knot: pc.bobble,
+                edge: pc.edge,
+                row: pc.course as isize
+                    + match pc.edge {
+                        Some(Edge::CastOn) => -1,
+                        Some(Edge::BindOff) => 1,
+                        None => 0,
+                    },
             });
         }
     }
@@ -469,6 +540,93 @@ fn puller(
     Some((c, w))
 }
 
+/// [`expected`] where `a` or `b` is part of an edge ([`super::edges`]).
+///
+/// - A cast-on loop under stitch (c, w) is held by that stitch: the interlock rule with
+///   puller (c, w).
+/// - A loop of the bind-off's course (or one a slipped stitch carries up to it) is held by the
+///   bind-off loop over the column it lands in, worked as the pattern's next row: the
+///   interlock rule with that puller.
+/// - Each bind-off loop's head lies behind the legs of the next bind-off loop when that one
+///   is knitted, in front when purled: the next loop is pulled through it (the chain).
+fn at_edge(lattice: &Lattice, pattern: &StitchPattern, a: &Seg, b: &Seg) -> Option<(Rule, bool)> {
+    let wales = lattice.wales;
+    let knit = |course: usize, wale: usize| pattern.stitch(course, wale % wales).face == Face::Knit;
+    let is_leg = |s: &Seg| matches!(s.part, Part::LeftLeg | Part::RightLeg);
+    match (a.edge, b.edge) {
+        (Some(Edge::BindOff), Some(Edge::BindOff)) if a.piece == b.piece => {
+            let chain = |head: &Seg, leg: &Seg| {
+                head.part == Part::Head && is_leg(leg) && leg.wale == (head.wale + 1) % wales
+            };
+            if chain(a, b) {
+                Some((Rule::Stitch, !knit(b.course + 1, b.wale)))
+            } else if chain(b, a) {
+                Some((Rule::Stitch, knit(a.course + 1, a.wale)))
+            } else {
+                None
+            }
+        }
+        (Some(_), Some(_)) => None,
+        (Some(_), None) => edge_and_fabric(lattice, pattern, a, b),
+        (None, Some(_)) => edge_and_fabric(lattice, pattern, b, a).map(|(r, f)| (r, !f)),
+        (None, None) => None,
+    }
+}
+
+/// Whether the edge yarn `e` should be in front of the fabric yarn `f` where they cross.
+fn edge_and_fabric(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    e: &Seg,
+    f: &Seg,
+) -> Option<(Rule, bool)> {
+    let wales = lattice.wales;
+    let cell = |course: usize, wale: usize| pattern.stitch(course, wale % wales);
+    // The interlock's rule for the side of upper yarn `upper` against a loop whose puller
+    // is `p`: the puller's own legs on its face side, the sinkers of its course on the other,
+    // any other loop of its course on the face side.
+    let upper_front = |upper: &Seg, p: (usize, usize)| {
+        let knit = cell(p.0, p.1).face == Face::Knit;
+        if upper.part == Part::Sinker {
+            !knit
+        } else if upper.wale == p.1 {
+            cell(p.0, upper.wale).face == Face::Knit
+        } else {
+            knit
+        }
+    };
+    match e.edge? {
+        Edge::CastOn => {
+            // Under a slipped stitch the loop is carried up to the next course, which holds
+            // it; the slipped stitch's float passes it on the side the yarn was held.
+            let rise = super::edges::cast_on_rise(lattice, pattern, e.course, e.wale);
+            let puller = (e.course + rise, e.wale);
+            if f.course == puller.0 {
+                return Some((Rule::Interlock, !upper_front(f, puller)));
+            }
+            match cell(f.course, f.wale).form {
+                Form::Slip { yarn_front }
+                    if rise == 1
+                        && f.course == e.course
+                        && f.part != Part::Sinker
+                        && e.part != Part::Sinker =>
+                {
+                    Some((Rule::Stitch, !yarn_front))
+                }
+                _ => None,
+            }
+        }
+        Edge::BindOff => {
+            let rise = cell(f.course, f.wale).rise > 0 && f.course + 1 < lattice.courses;
+            if f.course + 1 + usize::from(rise) != e.course + 1 {
+                return None;
+            }
+            let x = landing(lattice, pattern, f.course, f.wale).rem_euclid(wales as isize) as usize;
+            Some((Rule::Interlock, upper_front(e, (e.course + 1, x))))
+        }
+    }
+}
+
 /// Whether `a` should be in front of `b` where they cross, and the rule that says so.
 fn expected(lattice: &Lattice, pattern: &StitchPattern, a: &Seg, b: &Seg) -> Option<(Rule, bool)> {
     // A float of stranded colourwork runs behind the fabric, a bobble's ball in front of it.
@@ -477,6 +635,9 @@ fn expected(lattice: &Lattice, pattern: &StitchPattern, a: &Seg, b: &Seg) -> Opt
     }
     if a.knot || b.knot {
         return (a.knot != b.knot).then_some((Rule::Stitch, a.knot));
+    }
+    if a.edge.is_some() || b.edge.is_some() {
+        return at_edge(lattice, pattern, a, b);
     }
     let cell = |s: &Seg| pattern.stitch(s.course, s.wale);
     let (ca, cb) = (cell(a), cell(b));

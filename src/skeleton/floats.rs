@@ -60,6 +60,7 @@ pub fn float_pieces(lattice: &Lattice, built: &[bool], colors: &ColorPattern) ->
                             float_layer: rank as u8,
                             bobble: false,
                             density: 1,
+                            edge: None,
                         });
                     }
                 }

@@ -12,6 +12,7 @@ pub mod bobbles;
 pub mod contact;
 pub mod crossings;
 pub mod curvature;
+pub mod edges;
 pub mod floats;
 mod key_points;
 pub mod leaning_rows;
@@ -59,6 +60,9 @@ pub struct YarnPiece {
     /// Centreline samples per loop as a multiple of the knit's samples per loop, at least 1:
     /// more on courses whose loops lean across columns ([`sampling_density`]).
     pub density: usize,
+    /// The cast-on under, or the bind-off over, stitches `first_wale..` of `course` (see
+    /// [`edges`]), rather than the course's own yarn.
+    pub edge: Option<edges::Edge>,
 }
 
 /// Spline sampling settings.
@@ -71,6 +75,21 @@ pub struct SplineSampling {
 }
 
 impl YarnPiece {
+    /// A run of `stitches` stitches of `course`'s own yarn from `first_wale`.
+    pub fn course_run(course: usize, first_wale: usize, stitches: usize, closed: bool) -> Self {
+        Self {
+            course,
+            first_wale,
+            stitches,
+            closed,
+            float_color: None,
+            float_layer: 0,
+            bobble: false,
+            density: 1,
+            edge: None,
+        }
+    }
+
     /// Number of centreline samples of this piece, closed form. Open pieces sample the
     /// parameter range `[0, 6n - 1]` (the last key point included); closed ones `[0, 6n)`.
     pub fn sample_count(&self, samples_per_loop: usize) -> usize {
@@ -118,49 +137,45 @@ pub fn yarn_pieces(lattice: &Lattice, built: &[bool]) -> Vec<YarnPiece> {
     let mut pieces = Vec::new();
     for course in 0..lattice.courses {
         let row = &built[course * wales..(course + 1) * wales];
-        if lattice.cyclic_u && row.iter().all(|&b| b) {
-            pieces.push(YarnPiece {
-                course,
-                first_wale: 0,
-                stitches: wales,
-                closed: true,
-                float_color: None,
-                float_layer: 0,
-                bobble: false,
-                density: 1,
-            });
-            continue;
-        }
-        // Start scanning after a missing stitch, so a run across a cyclic seam stays whole.
-        let start = if lattice.cyclic_u {
-            row.iter().position(|&b| !b).unwrap_or(0) + 1
-        } else {
-            0
-        };
-        let mut run_start: Option<usize> = None;
-        for k in 0..=wales {
-            let w = start + k;
-            let is_built = k < wales && row[w % wales];
-            match (is_built, run_start) {
-                (true, None) => run_start = Some(w),
-                (false, Some(s)) => {
-                    pieces.push(YarnPiece {
-                        course,
-                        first_wale: s,
-                        stitches: w - s,
-                        closed: false,
-                        float_color: None,
-                        float_layer: 0,
-                        bobble: false,
-                        density: 1,
-                    });
-                    run_start = None;
-                }
-                _ => {}
-            }
+        for (first_wale, stitches, closed) in runs(row, lattice.cyclic_u) {
+            pieces.push(YarnPiece::course_run(course, first_wale, stitches, closed));
         }
     }
     pieces
+}
+
+/// The runs of consecutive `true` entries of one course's `row` as (first wale, length,
+/// closed): a whole row round a cyclic u is one closed run, and a run across a cyclic seam
+/// stays whole (its first wale is then past the seam's far side, and it wraps).
+fn runs(row: &[bool], cyclic_u: bool) -> Vec<(usize, usize, bool)> {
+    let wales = row.len();
+    if wales == 0 {
+        return Vec::new();
+    }
+    if cyclic_u && row.iter().all(|&b| b) {
+        return vec![(0, wales, true)];
+    }
+    let mut out = Vec::new();
+    // Start scanning after a missing stitch, so a run across a cyclic seam stays whole.
+    let start = if cyclic_u {
+        row.iter().position(|&b| !b).unwrap_or(0) + 1
+    } else {
+        0
+    };
+    let mut run_start: Option<usize> = None;
+    for k in 0..=wales {
+        let w = start + k;
+        let is_built = k < wales && row[w % wales];
+        match (is_built, run_start) {
+            (true, None) => run_start = Some(w),
+            (false, Some(s)) => {
+                out.push((s, w - s, false));
+                run_start = None;
+            }
+            _ => {}
+        }
+    }
+    out
 }
 
 /// Key points of a piece in (u, v, lambda), in yarn order.
@@ -172,6 +187,9 @@ pub fn piece_key_points(
 ) -> Vec<Vec3> {
     if piece.float_color.is_some() {
         return floats::float_key_points(lattice, piece, offsets.diameter);
+    }
+    if let Some(edge) = piece.edge {
+        return edges::edge_key_points(lattice, pattern, offsets, piece, edge);
     }
     if piece.bobble {
         // The ball stands in front of the yarn under it, however far the stitch's offsets
@@ -241,9 +259,12 @@ pub fn sample_piece(
         stitch_of_sample,
         |q| {
             let (p, n) = out.next().expect("one point per sample");
-            let sp = surface
-                .eval(Vec2::new(q.x, q.y))
-                .unwrap_or_else(|| surface.eval_nearest(Vec2::new(q.x, q.y)));
+            let uv = Vec2::new(q.x, q.y);
+            let sp = if piece.edge.is_some() {
+                edges::beyond_border(surface, uv, 0.25 * lattice.tile.y)
+            } else {
+                surface.eval(uv).unwrap_or_else(|| surface.eval_nearest(uv))
+            };
             *p = sp.position + q.z * sp.normal;
             *n = sp.normal;
         },

@@ -26,11 +26,11 @@ pub fn density(lean: usize) -> usize {
 }
 
 /// Sets each piece's [`YarnPiece::density`] from the loops it holds that lean furthest.
-/// Bobbles and floats keep 1.
+/// Bobbles, floats and edges keep 1.
 pub fn sampling_density(pieces: &mut [YarnPiece], lattice: &Lattice, pattern: &StitchPattern) {
     let wales = lattice.wales;
     for piece in pieces {
-        if piece.bobble || piece.float_color.is_some() {
+        if piece.bobble || piece.float_color.is_some() || piece.edge.is_some() {
             continue;
         }
         let lean = (0..piece.stitches)

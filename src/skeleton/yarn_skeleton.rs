@@ -13,8 +13,8 @@ use glam::Vec3;
 
 use super::crossings::{crossing_order, CrossingOrder};
 use super::{
-    bobbles, built_stitches, floats, leaning_rows, sample_piece, sample_piece_uv, sampling_density,
-    stitch_shape, tuning, yarn_pieces, NormalOffsets, SplineSampling, YarnPiece,
+    bobbles, built_stitches, edges, floats, leaning_rows, sample_piece, sample_piece_uv,
+    sampling_density, stitch_shape, tuning, yarn_pieces, NormalOffsets, SplineSampling, YarnPiece,
 };
 use crate::lattice::Lattice;
 use crate::pattern::{ColorPattern, StitchPattern};
@@ -29,6 +29,9 @@ pub struct YarnSkeleton {
     sampling: SplineSampling,
     /// The minimum clearance of the tuned loops on a flat patch, in yarn diameters.
     flat_clearance: f32,
+    /// Whether the first and last courses along an open v keep their loops live, with no
+    /// cast-on or bind-off ([`super::edges`]).
+    live_loops: bool,
 }
 
 impl YarnSkeleton {
@@ -79,7 +82,14 @@ impl YarnSkeleton {
             offsets,
             sampling,
             flat_clearance,
+            live_loops: false,
         }
+    }
+
+    /// This skeleton with the first and last courses' loops left live (`true`: no cast-on
+    /// or bind-off) or finished (`false`, the default).
+    pub fn with_live_loops(self, live_loops: bool) -> Self {
+        Self { live_loops, ..self }
     }
 
     /// The most samples-per-loop multiple any piece of `pattern` can get (loops that lean
@@ -119,12 +129,16 @@ impl YarnSkeleton {
         built_stitches(surface, &self.lattice)
     }
 
-    /// The pieces of yarn over the stitches `built`: each course's, sampled as densely as
-    /// its loops need, then the balls of the pattern's bobbles and, for a palette colour
-    /// chart (`colors`), the floats of stranded colourwork.
+    /// The pieces of yarn over the stitches `built` (row-major) of a fabric whose stitches
+    /// on the surface are `fabric` (`built` may leave some of them out: those a detail level
+    /// does not build): each course's, sampled as densely as its loops need, then the balls
+    /// of the pattern's bobbles, for a palette colour chart (`colors`) the floats of stranded
+    /// colourwork, and the cast-on and bind-off where the fabric ends along v (unless its
+    /// loops are left live).
     pub fn pieces(
         &self,
         built: &[bool],
+        fabric: &[bool],
         pattern: &StitchPattern,
         colors: Option<&ColorPattern>,
     ) -> Vec<YarnPiece> {
@@ -133,6 +147,9 @@ impl YarnSkeleton {
         pieces.extend(bobbles::bobble_pieces(&self.lattice, built, pattern));
         if let Some(colors) = colors {
             pieces.extend(floats::float_pieces(&self.lattice, built, colors));
+        }
+        if !self.live_loops {
+            pieces.extend(edges::edge_pieces(&self.lattice, fabric, built));
         }
         pieces
     }

@@ -210,6 +210,7 @@ def knit_keywords(texture: bool) -> dict[str, SearchStrategy[Any]]:
         "fluffiness": floats_for([0.0, 0.5, 4.0, 4.0001]),
         "ring_segments": ints_for([2, 3, 12, 64, 65]),
         "plies": ints_for([0, 1, 3, 8, 9]),
+        "live_loops": st.booleans(),
         "samples_per_loop": ints_for([5, 6, 32, 256, 257]),
         "tension": floats_for([0.5, 0.99, 0.991, 1.0]),
         "kappa": floats_for([0.01, 0.02, 0.0201]),

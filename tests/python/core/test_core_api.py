@@ -41,8 +41,9 @@ def test_knit_returns_blender_ready_buffers() -> None:
     assert t.min() >= 0 and t.max() < len(v)
     assert np.isfinite(v).all()
     offsets = r.course_offsets
-    assert offsets.shape == (11,) and offsets[0] == 0 and offsets[-1] == len(r.centerline_points)
-    assert r.yarn_course.tolist() == list(range(10))
+    # Ten courses, then the cast-on under the first and the bind-off over the last.
+    assert offsets.shape == (13,) and offsets[0] == 0 and offsets[-1] == len(r.centerline_points)
+    assert r.yarn_course.tolist() == list(range(10)) + [0, 9]
     assert r.stats["stitches"] == 120 and r.stats["triangles"] == len(t)
     # The yarn of course i is the slice between its offsets.
     yarn = r.centerline_points[offsets[3] : offsets[4]]
@@ -218,8 +219,25 @@ def test_interlock_is_exposed_and_whole() -> None:
         r = knitwear.knit(surface, knitwear.Pattern.preset(name), measure_clearance=True)
         decided, agree = r.stats["interlock"]
         assert decided > 0 and agree == decided, (name, decided, agree)
+        # Finished with a cast-on and a bind-off: every loop is held, every stitch pulled
+        # through one.
+        assert r.stats["free_loops"] == (0, 0), name
     plain = knitwear.knit(surface, knitwear.Pattern.preset("stockinette"))
-    assert plain.stats["interlock"] is None
+    assert plain.stats["interlock"] is None and plain.stats["free_loops"] is None
+
+
+def test_live_loops_leave_the_edges_unfinished() -> None:
+    """`live_loops=True` knits the fabric alone: the same yarn, without the cast-on and the
+    bind-off, so the last course's loops and the first course's feet hang free."""
+    surface = knitwear.GridSurface(*plane_grid())
+    pattern = knitwear.Pattern.preset("stockinette")
+    finished = knitwear.knit(surface, pattern, measure_clearance=True)
+    live = knitwear.knit(surface, pattern, measure_clearance=True, live_loops=True)
+    wales = live.stats["wales"]
+    assert finished.stats["yarn_pieces"] == live.stats["yarn_pieces"] + 2
+    assert live.stats["free_loops"] == (wales, wales)
+    n = len(live.centerline_points)
+    np.testing.assert_array_equal(finished.centerline_points[:n], live.centerline_points)
 
 
 def test_cover_is_exposed_and_grows_with_the_yarn() -> None:

@@ -1,0 +1,185 @@
+//! The cast-on and the bind-off (src/skeleton/edges.rs, issue "Knitted, not stacked" item 4):
+//! at an open end no loop hangs free, and the fabric between the edges is knitted exactly as
+//! with live loops.
+
+use std::f32::consts::TAU;
+
+use glam::Vec3;
+use knitwear::knit::{KnitOutput, KnitParams, PreparedKnit};
+use knitwear::pattern::StitchPattern;
+use knitwear::skeleton::crossings::CrossingOrder;
+use knitwear::surface::{PlaneSurface, Surface};
+
+mod common;
+use common::surfaces::grid;
+
+/// Presets with every kind of stitch the edges meet: knit and purl faces and their
+/// boundaries, slipped stitches on the first row, yarn-overs and decreases, cables, bobbles.
+const PRESETS: &[&str] = &[
+    "stockinette",
+    "garter",
+    "rib_1x1",
+    "seed",
+    "linen_stitch",
+    "cable_c4",
+    "lace_diamond",
+    "eyelet_rows",
+    "bobbles",
+];
+
+fn knit(
+    surface: &dyn Surface,
+    pattern: &StitchPattern,
+    live_loops: bool,
+) -> (PreparedKnit, KnitOutput, CrossingOrder) {
+    let p = KnitParams {
+        threads: Some(2),
+        live_loops,
+        ..KnitParams::default()
+    };
+    let knit = PreparedKnit::new(surface, pattern, &p).unwrap();
+    let out = knit.build(surface).unwrap();
+    let order = knit.crossing_order(surface).unwrap();
+    (knit, out, order)
+}
+
+/// A tube knitted in the round, open at both ends: radius 3 cm, 8 cm tall.
+fn tube() -> knitwear::surface::GridSurface {
+    grid(16, 96, true, |u, v| {
+        let a = TAU * u;
+        (
+            Vec3::new(0.03 * a.cos(), 0.03 * a.sin(), 0.08 * v),
+            Vec3::new(a.cos(), a.sin(), 0.0),
+        )
+    })
+}
+
+/// Finished, every loop is held (each interlock crossing of the cast-on, the bind-off and
+/// the bind-off's chain agreeing with its rule) and every stitch is pulled through a loop;
+/// with live loops, the last course's loops and the first course's feet hang free, so the
+/// measure is one a wrong edge fails.
+#[test]
+fn finished_edges_hold_every_loop_and_live_loops_hang_free() {
+    let sheet = PlaneSurface {
+        width: 0.06,
+        height: 0.05,
+    };
+    let tube = tube();
+    let surfaces: [(&str, &dyn Surface); 2] = [("sheet", &sheet), ("tube", &tube)];
+    let mut failures = Vec::new();
+    for name in PRESETS {
+        let pattern = StitchPattern::preset(name).unwrap();
+        for (surface_name, surface) in surfaces {
+            let (prepared, _, finished) = knit(surface, &pattern, false);
+            let (_, _, live) = knit(surface, &pattern, true);
+            let wales = prepared.lattice().wales;
+            println!(
+                "{name:14} {surface_name:5}: finished: free loops {}/{}, free feet {}/{}, \
+                 interlock {}/{}; live: free loops {}/{}, free feet {}/{}",
+                finished.free_loops,
+                finished.loops,
+                finished.free_feet,
+                finished.feet,
+                finished.interlock_agree,
+                finished.interlock_decided,
+                live.free_loops,
+                live.loops,
+                live.free_feet,
+                live.feet,
+            );
+            if finished.free_loops != 0 || finished.free_feet != 0 {
+                failures.push(format!("{name} on the {surface_name}: {finished:?}"));
+            }
+            if finished.agree != finished.decided
+                || finished.interlock_agree != finished.interlock_decided
+            {
+                failures.push(format!(
+                    "{name} on the {surface_name}: {:?}",
+                    finished.first_disagreement
+                ));
+            }
+            // Live: the top loop of every column (the last course's, or under a slipped
+            // stitch the loop it carries up from the course below) and the first course's
+            // feet (a yarn-over has none) are free, and nothing else.
+            if live.free_loops != wales || live.free_feet == 0 || live.free_feet > wales {
+                failures.push(format!(
+                    "{name} on the {surface_name}, live loops: {} free loops (want {wales}), {} \
+                     free feet",
+                    live.free_loops, live.free_feet
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// The edges are extra yarn only: every piece of the fabric is sampled to the same bits as
+/// with live loops, so the edges take nothing from the fabric's clearance or interlock.
+#[test]
+fn the_fabric_between_the_edges_is_knitted_as_with_live_loops() {
+    let sheet = PlaneSurface {
+        width: 0.05,
+        height: 0.04,
+    };
+    for name in ["stockinette", "cable_c4"] {
+        let pattern = StitchPattern::preset(name).unwrap();
+        let (_, finished, _) = knit(&sheet, &pattern, false);
+        let (_, live, _) = knit(&sheet, &pattern, true);
+        let pieces = live.yarn_closed.len();
+        assert_eq!(
+            finished.yarn_closed.len(),
+            pieces + 2,
+            "{name}: one cast-on and one bind-off"
+        );
+        let end = live.yarn_offsets[pieces] as usize * 3;
+        assert_eq!(
+            finished.centerline[..end],
+            live.centerline[..end],
+            "{name}: the fabric's centrelines"
+        );
+        assert_eq!(finished.yarn_offsets[..=pieces], live.yarn_offsets[..]);
+        assert!(finished.centerline.len() > end);
+    }
+}
+
+/// The edges stay within about two thirds of a row of the fabric's first and last courses,
+/// hanging at most a third of a row past the surface's border, and follow the sheet's plane.
+#[test]
+fn the_edges_hug_the_border() {
+    let sheet = PlaneSurface {
+        width: 0.06,
+        height: 0.05,
+    };
+    let pattern = StitchPattern::preset("stockinette").unwrap();
+    let (_, out, _) = knit(&sheet, &pattern, false);
+    let row = out.stats.stitch_height;
+    let pieces = out.yarn_closed.len();
+    for (i, want_bottom) in [(pieces - 2, true), (pieces - 1, false)] {
+        let (a, b) = (
+            out.yarn_offsets[i] as usize,
+            out.yarn_offsets[i + 1] as usize,
+        );
+        let points: Vec<Vec3> = out.centerline[3 * a..3 * b]
+            .chunks(3)
+            .map(|c| Vec3::new(c[0], c[1], c[2]))
+            .collect();
+        let (lo, hi) = points.iter().fold((f32::MAX, f32::MIN), |(lo, hi), p| {
+            (lo.min(p.y), hi.max(p.y))
+        });
+        let border = if want_bottom { 0.0 } else { 0.05 };
+        let (near, far) = if want_bottom { (hi, lo) } else { (lo, hi) };
+        assert!(
+            (far - border).abs() < 0.4 * row,
+            "piece {i}: reaches {far} past the border {border} (row {row})"
+        );
+        assert!(
+            (near - border).abs() < 1.5 * row,
+            "piece {i}: {near} is more than a row and a half inside the border"
+        );
+        let thickness = points.iter().fold(0.0f32, |m, p| m.max(p.z.abs()));
+        assert!(
+            thickness < 3.0 * 2.0 * out.yarn_radius,
+            "off the plane: {thickness}"
+        );
+    }
+}
