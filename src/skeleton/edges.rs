@@ -35,7 +35,7 @@ use crate::pattern::{Form, Stitch, StitchPattern};
 use crate::surface::{Surface, SurfacePoint};
 
 /// Where a point of an edge at (u, v) lies: on the surface, or past an open v end of the
-/// domain (the edges reach up to about a third of a row beyond it), carried on along the
+/// domain (the edges reach up to about half a row beyond it), carried on along the
 /// surface's tangent there, `step` (in v) measured back from the border. At a pole, and for a
 /// point off every UV island, the nearest point of the surface.
 pub fn beyond_border(surface: &dyn Surface, uv: Vec2, step: f32) -> SurfacePoint {
