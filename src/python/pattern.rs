@@ -190,9 +190,12 @@ impl PyColorPattern {
     /// A named colour chart (see `ColorPattern.presets()`) in the given palette.
     #[staticmethod]
     fn preset(name: &Bound<'_, PyAny>, palette: Vec<Vec<f32>>) -> PyResult<Self> {
-        crate::pattern::color_preset(&text_arg(name, "the colour preset name")?, palette_of(palette)?)
-            .map(|inner| Self { inner })
-            .map_err(to_py)
+        crate::pattern::color_preset(
+            &text_arg(name, "the colour preset name")?,
+            palette_of(palette)?,
+        )
+        .map(|inner| Self { inner })
+        .map_err(to_py)
     }
     /// The names of the colour chart presets.
     #[staticmethod]
