@@ -152,7 +152,8 @@ def render_swatch(name: str, png: Path, size: int = 256) -> dict[str, Any]:
     wales, courses = swatch_counts(*repeat_of(name))
     width, height = wales * STITCH_W, courses * STITCH_H
     source = sheet_source(width, height)
-    top_camera(1.06 * max(width, height))
+    # A margin round the swatch for its cast-on and bind-off, which hang past the border.
+    top_camera(1.12 * max(width, height))
     colours: dict[str, Any] = {"color_mode": "SINGLE", "color_1": YARN}
     if name in COLOUR_CHARTS:
         colours = {

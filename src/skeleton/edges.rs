@@ -172,13 +172,16 @@ fn plain_and_left(
     (this, left)
 }
 
-/// The wales of `course` whose loops land in wale `w` (at most [`LANDING_REACH`] away).
+/// The loops (course, wale) a bind-off over wale `w` of `course` is pulled through: those of
+/// `course` that land in `w` (under a cable or a decrease, loops of other wales; at most
+/// [`LANDING_REACH`] away), or under a slipped stitch the loop of the course below that it
+/// carries up.
 fn landing_here<'a>(
     lattice: &'a Lattice,
     pattern: &'a StitchPattern,
     course: usize,
     w: usize,
-) -> impl Iterator<Item = usize> + 'a {
+) -> impl Iterator<Item = (usize, usize)> + 'a {
     let wales = lattice.wales as isize;
     (-LANDING_REACH..=LANDING_REACH).filter_map(move |d| {
         let from = w as isize + d;
@@ -195,7 +198,18 @@ fn landing_here<'a>(
         } else {
             lands
         };
-        (lands == w as isize).then_some(from as usize)
+        if lands != w as isize {
+            return None;
+        }
+        let slipped = matches!(
+            pattern.stitch(course, from as usize).form,
+            Form::Slip { .. }
+        );
+        match (slipped, course) {
+            (false, _) => Some((course, from as usize)),
+            (true, 0) => None,
+            (true, _) => Some((course - 1, from as usize)),
+        }
     })
 }
 
@@ -354,7 +368,10 @@ fn bind_off_stitch(
         (head_at, head, at(BIND_OFF_RIGHT_LEG_TOP), 0.5 * leg)
     };
     let points: [(Vec2, f32); KEY_POINTS] = [
-        (t.n0 - s.sinker_dip * up, l[0]),
+        (
+            t.n0 - s.sinker_dip * up,
+            bind_off_sinker(lattice, pattern, offsets, course, wale, l[0]),
+        ),
         (t.n0 + s.leg_bottom * across, l[1]),
         (at(BIND_OFF_LEG_TOP), leg),
         (head, head_lambda),
@@ -362,6 +379,41 @@ fn bind_off_stitch(
         (t.n0 + (1.0 - s.leg_bottom) * across, l[5]),
     ];
     finish(points)
+}
+
+/// The depth of the sinker at the left corner of the bind-off loop over (`course`, `wale`):
+/// `tuned`, or further to the side the interlock gives it, a diameter past the leg tops of
+/// the loops it passes there (which the relief of a row with slipped stitches may have moved
+/// towards it) where the loops on both sides of the corner agree on that side.
+fn bind_off_sinker(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    offsets: &NormalOffsets,
+    course: usize,
+    wale: usize,
+    tuned: f32,
+) -> f32 {
+    let w = wale % lattice.wales;
+    let side_of = |x: usize| -plain_and_left(lattice, pattern, course + 1, x).0.side();
+    let here = side_of(w);
+    let mut reach = here * tuned;
+    for (c, from) in landing_here(lattice, pattern, course, w) {
+        reach = reach.max(
+            here * stitch_key_points(lattice, pattern, offsets, c, from)[2].z + offsets.diameter,
+        );
+    }
+    if w > 0 || lattice.cyclic_u {
+        let left = (w + lattice.wales - 1) % lattice.wales;
+        if side_of(left) == here {
+            for (c, from) in landing_here(lattice, pattern, course, left) {
+                reach = reach.max(
+                    here * stitch_key_points(lattice, pattern, offsets, c, from)[4].z
+                        + offsets.diameter,
+                );
+            }
+        }
+    }
+    here * reach
 }
 
 /// The offsets a bind-off loop over stitch (`course`, `wale`) is made with, its foot's
@@ -389,7 +441,7 @@ fn bind_off_legs<'a>(
     // loops of other columns), and where the legs cross their heads' arches: near the head,
     // a quarter of the way to either leg top.
     let below: Vec<[Vec3; KEY_POINTS]> = landing_here(lattice, pattern, course, w)
-        .map(|from| stitch_key_points(lattice, pattern, offsets, course, from))
+        .map(|(c, from)| stitch_key_points(lattice, pattern, offsets, c, from))
         .collect();
     let clear = |top: usize| {
         below
