@@ -503,7 +503,12 @@ fn segments(
 
 /// Where the (u, v) projections of segments `a0 a1` and `b0 b1` cross (not at an end): the
 /// fraction along each, the depths (lambda) of each there, and the point in (u, v).
-fn intersect(a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> Option<(f32, f32, f32, f32, Vec2)> {
+pub(super) fn intersect(
+    a0: Vec3,
+    a1: Vec3,
+    b0: Vec3,
+    b1: Vec3,
+) -> Option<(f32, f32, f32, f32, Vec2)> {
     let (p, r) = (a0.truncate(), (a1 - a0).truncate());
     let (q, s) = (b0.truncate(), (b1 - b0).truncate());
     let denom = r.perp_dot(s);
@@ -538,6 +543,59 @@ fn puller(
     }
     let w = landing(lattice, pattern, course, wale).rem_euclid(lattice.wales as isize) as usize;
     Some((c, w))
+}
+
+/// The part of a loop, and the stitch of its piece it belongs to, at spline parameter `t`
+/// of a piece (six key points a stitch; the yarn past the right leg bottom is the next
+/// stitch's sinker), as [`segments`] assigns them.
+fn part_at(t: f32) -> (usize, Part) {
+    let stitch = t.max(0.0) as usize / KEY_POINTS;
+    match t.max(0.0) as usize % KEY_POINTS {
+        0 => (stitch, Part::Sinker),
+        1 => (stitch, Part::LeftLeg),
+        2 | 3 => (stitch, Part::Head),
+        4 => (stitch, Part::RightLeg),
+        _ => (stitch + 1, Part::Sinker),
+    }
+}
+
+/// Whether the rule puts the edge yarn of `edge` (at spline parameter `t` along it) in front
+/// of the fabric yarn of a course's stitch (`course`, `wale`) at parameter `ft` within that
+/// stitch (0 at its sinker, up to 6), where they cross; `None` where no rule decides. The
+/// edges keep clear of the fabric on this side ([`super::edge_clearance`]).
+pub(super) fn edge_in_front(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    edge: &YarnPiece,
+    t: f32,
+    course: usize,
+    wale: usize,
+    ft: f32,
+) -> Option<bool> {
+    let wales = lattice.wales;
+    let seg = |piece: usize, course: usize, wale: usize, part: Part, edge: Option<Edge>| Seg {
+        a: Vec3::ZERO,
+        b: Vec3::ZERO,
+        piece,
+        index: 0,
+        course,
+        wale: wale % wales,
+        part,
+        float: false,
+        knot: false,
+        edge,
+        row: course as isize,
+    };
+    let (stitch, part) = part_at(t);
+    let stitch = if edge.closed {
+        stitch % edge.stitches.max(1)
+    } else {
+        stitch.min(edge.stitches.saturating_sub(1))
+    };
+    let e = seg(0, edge.course, edge.first_wale + stitch, part, edge.edge);
+    let (next, part) = part_at(ft);
+    let f = seg(1, course, wale + next, part, None);
+    at_edge(lattice, pattern, &e, &f).map(|(_, front)| front)
 }
 
 /// [`expected`] where `a` or `b` is part of an edge ([`super::edges`]).

@@ -12,6 +12,7 @@ pub mod bobbles;
 pub mod contact;
 pub mod crossings;
 pub mod curvature;
+mod edge_clearance;
 pub mod edges;
 pub mod floats;
 mod key_points;
@@ -327,10 +328,33 @@ fn for_each_sample(
         tension: sampling.tension,
         period,
     };
-    for (j, owner) in stitch_of_sample.iter_mut().enumerate() {
-        let t = piece.sample_t(j, sampling.samples_per_loop);
-        emit(spline.eval(t));
-        *owner = ((t / KEY_POINTS as f32) as usize).min(piece.stitches - 1) as u32;
+    let owner = |t: f32| ((t / KEY_POINTS as f32) as usize).min(piece.stitches - 1) as u32;
+    if piece.edge.is_none() {
+        for (j, o) in stitch_of_sample.iter_mut().enumerate() {
+            let t = piece.sample_t(j, sampling.samples_per_loop);
+            emit(spline.eval(t));
+            *o = owner(t);
+        }
+        return clamped;
+    }
+    // An edge is kept clear of the fabric it finishes, which needs all its samples at once.
+    let t: Vec<f32> = (0..stitch_of_sample.len())
+        .map(|j| piece.sample_t(j, sampling.samples_per_loop))
+        .collect();
+    let mut samples: Vec<Vec3> = t.iter().map(|&t| spline.eval(t)).collect();
+    edge_clearance::keep_clear(
+        surface,
+        lattice,
+        pattern,
+        offsets,
+        sampling,
+        piece,
+        &t,
+        &mut samples,
+    );
+    for ((o, &t), q) in stitch_of_sample.iter_mut().zip(&t).zip(samples) {
+        emit(q);
+        *o = owner(t);
     }
     clamped
 }
