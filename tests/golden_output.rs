@@ -1,7 +1,7 @@
 //! Every preset's knit, bit for bit: the digests of its output buffers on a small sheet at
 //! the default settings and the add-on's irregularity (kappa 0.005), with live loops (the
 //! fabric alone: recorded before the house was rearranged, "One source per setting", and
-//! unchanged by the cast-on and bind-off since) and finished with them (the default). A
+//! unchanged by the cast-on and bind-off since) and finished with them (`live_loops` off). A
 //! refactor that changes one bit of any preset's yarn, colours or topology fails here; so
 //! does a machine or thread count that knits differently from the one that recorded them.
 //!
