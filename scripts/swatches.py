@@ -172,7 +172,6 @@ def render_swatch(name: str, png: Path, size: int = 256) -> dict[str, Any]:
         direction="U",
         detail_mode="FULL",  # every stitch at full quality: the camera sees them all anyway
         yarn_radius=YARN_RADIUS * STITCH_W,
-        live_loops=False,  # finished: a cast-on along the bottom, a bind-off along the top
         **colours,
     )
     outcome.object.knitwear.follow_source = False  # a still

@@ -270,9 +270,9 @@ pub const PLIES: Setting = Setting {
 
 /// Whether the first and last courses keep their loops live ([`crate::skeleton::edges`]).
 pub const LIVE_LOOPS: Setting = Setting {
-    doc: "Leave the loops of the first and last courses live, as on the needles; off finishes \
-          the fabric with a cast-on and a bind-off edge where the surface is open along v",
-    ..boolean("live_loops", "Live Loops", true)
+    doc: "Leave the loops of the first and last courses live, as on the needles, instead of \
+          finishing the fabric with a cast-on and a bind-off edge (surfaces open along v)",
+    ..boolean("live_loops", "Live Loops", false)
 };
 
 pub const SAMPLES_PER_LOOP: Setting = Setting {

@@ -1,7 +1,7 @@
 //! Every preset's knit, bit for bit: the digests of its output buffers on a small sheet at
 //! the default settings and the add-on's irregularity (kappa 0.005), with live loops (the
 //! fabric alone: recorded before the house was rearranged, "One source per setting", and
-//! unchanged by the cast-on and bind-off since) and finished with them (`live_loops` off). A
+//! unchanged by the cast-on and bind-off since) and finished with them (the default). A
 //! refactor that changes one bit of any preset's yarn, colours or topology fails here; so
 //! does a machine or thread count that knits differently from the one that recorded them.
 //!
@@ -24,26 +24,26 @@ const GOLDEN: &[(&str, u64, u64)] = &[
         0x057c9efeacd74b1f,
         0xeb71469caade6f7a,
     ),
-    ("garter", 0xda6fd2d75ef0b309, 0x2ff69835dd1e432a),
+    ("garter", 0xda6fd2d75ef0b309, 0xd7fbf9dd90b914b3),
     ("rib_1x1", 0x62d9523f8c942769, 0xbadafe38d7b880d1),
-    ("rib_2x2", 0xcbdb1b8b201297c4, 0x90a300d69759aaeb),
-    ("seed", 0xc39ad4044c277004, 0x5ac0db5464871928),
+    ("rib_2x2", 0xcbdb1b8b201297c4, 0x39258d0c41fe38f1),
+    ("seed", 0xc39ad4044c277004, 0x65d4abcf715855d1),
     ("moss", 0xf968114150872504, 0x1c7e891167215e85),
     ("basketweave", 0xabca32c855822a89, 0x49b962781d29a792),
     ("twisted_rib", 0x1ec8c8bc5f3a10b3, 0x406db1e26af00561),
     ("cable_c4", 0x71ca6cf3c0a9d964, 0x0390c3fd4fec622d),
-    ("cable_c6", 0x8b5aacfc92621e84, 0xc6198e9f13b944fa),
+    ("cable_c6", 0x8b5aacfc92621e84, 0x3e3b6bbc413e2676),
     ("horseshoe_cable", 0x5041a1787cd81b80, 0x0c81f13e749d88a7),
-    ("honeycomb_cable", 0xbd7e6e16ab480dd4, 0x345adb1998557ff0),
-    ("mock_cable_rib", 0xe43f6c19062af8d3, 0x00fd84eba6a281e9),
-    ("twisted_cable_rib", 0x1d9a74e68fe19347, 0x6b7abe6a2a3c5543),
-    ("diamond", 0xee9368b15ba67fd7, 0x8fc12b09f039365e),
+    ("honeycomb_cable", 0xbd7e6e16ab480dd4, 0xd28a8d716e9c5430),
+    ("mock_cable_rib", 0xe43f6c19062af8d3, 0xc3e26cb74a68be0d),
+    ("twisted_cable_rib", 0x1d9a74e68fe19347, 0x723555d9673fedd7),
+    ("diamond", 0xee9368b15ba67fd7, 0xcb15a7ce7b8a2647),
     ("chevron", 0x28511bf8fa5000e6, 0xe07671d576f65dd8),
-    ("feather_and_fan", 0x0a67fbb8e808bc58, 0xaa5fd3ffe9aa24bf),
+    ("feather_and_fan", 0x0a67fbb8e808bc58, 0xeea5c93534cb06ba),
     ("eyelet_rows", 0x19277471a2521ee6, 0xbd59d0f5c3a0fccc),
-    ("lace_diamond", 0x0179d33671a6498c, 0x683f32f9d962e1da),
-    ("bobbles", 0x6d0cc9c0106cbe63, 0x2484c28f17f3211a),
-    ("linen_stitch", 0x51685d4f54ff1696, 0xfda73bb8822ff4a4),
+    ("lace_diamond", 0x0179d33671a6498c, 0xbc286a95d3790e81),
+    ("bobbles", 0x6d0cc9c0106cbe63, 0xcec11043e005d8f5),
+    ("linen_stitch", 0x51685d4f54ff1696, 0xc211d858cf05c2c1),
     ("fair_isle", 0xeb53742a8d884b92, 0xc0030bcfdacbc623),
     ("fair_isle+band", 0x069e22cd7eb097ad, 0xcab1f2b00f3d628f),
 ];

@@ -166,7 +166,8 @@ fn counts_and_topology_match_the_closed_forms() {
         };
         let out = knit(&sheet(), &StitchPattern::preset("seed").unwrap(), &p).unwrap();
         assert_eq!(out.stats.stitches, 63);
-        assert_eq!(out.yarn_offsets.len(), 8);
+        // Seven courses, a cast-on and a bind-off.
+        assert_eq!(out.yarn_offsets.len(), 7 + 2 + 1);
         assert_topology(&out, m);
         // Closed courses on a cylinder: as many ring pairs as rings.
         let out = knit(&cylinder(), &StitchPattern::preset("rib_2x2").unwrap(), &p).unwrap();

@@ -402,8 +402,9 @@ fn fair_isle_floats_run_behind_the_fabric_in_their_own_colour() {
     let knit = PreparedKnit::new(&plane, &stockinette, &p).unwrap();
     let out = knit.build(&plane).unwrap();
     // 4 two-colour courses x (cream floats over 3 red stitches between cream ones: 3 per
-    // course, and red floats over the 1 cream stitch between red ones: 3 per course).
-    assert_eq!(out.stats.yarn_pieces, 8 + 4 * 6, "{:?}", out.stats);
+    // course, and red floats over the 1 cream stitch between red ones: 3 per course), and
+    // the cast-on and the bind-off.
+    assert_eq!(out.stats.yarn_pieces, 8 + 4 * 6 + 2, "{:?}", out.stats);
     // Floats are behind the surface (z < 0 on the plane), in the colour they carry.
     let courses = &out.yarn_course;
     assert_eq!(courses.len(), out.stats.yarn_pieces);

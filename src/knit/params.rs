@@ -56,8 +56,7 @@ pub struct KnitParams {
     /// Plies twisted round each other ([`crate::geometry::plies`]), 1..=8. Default: 1.
     pub plies: usize,
     /// Leave the first and last courses' loops live: no cast-on or bind-off
-    /// ([`crate::skeleton::edges`]). Default: true (the edges are opt-in until every preset's
-    /// bind-off clears its floor).
+    /// ([`crate::skeleton::edges`]). Default: false.
     pub live_loops: bool,
     /// Centreline samples per stitch, 6..=256. Default: 16.
     pub samples_per_loop: usize,

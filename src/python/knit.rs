@@ -222,7 +222,7 @@ impl PyKnit {
     #[new]
     #[pyo3(signature = (
         surface, pattern, *, courses=None, wales=None, gauge=None, yarn_radius=None,
-        stitch_size=None, fluffiness=0.5, ring_segments=6, plies=1, live_loops=true, samples_per_loop=16,
+        stitch_size=None, fluffiness=0.5, ring_segments=6, plies=1, live_loops=false, samples_per_loop=16,
         tension=0.0,
         kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
         budget_bytes=None, measure_clearance=false, camera=None, stitch_levels=None, detail_px=None,

@@ -18,7 +18,7 @@ use crate::texture::knit_texture as core_texture;
 #[pyfunction]
 #[pyo3(signature = (
     surface, pattern, *, width=1024, height=1024, courses=None, wales=None, gauge=None,
-    yarn_radius=None, stitch_size=None, fluffiness=0.5, ring_segments=6, plies=1, live_loops=true,
+    yarn_radius=None, stitch_size=None, fluffiness=0.5, ring_segments=6, plies=1, live_loops=false,
     samples_per_loop=16, tension=0.0, kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15,
     threads=None, budget_bytes=None, measure_clearance=false
 ))]

@@ -386,12 +386,21 @@ impl FabricNear {
         let mut tried = std::collections::BTreeSet::new();
         for (_, f, _, _) in self.pairs(a, b, metric, clearance) {
             let line = &self.lines[f.line];
-            if f.index + 1 >= line.len() || !tried.insert((f.line, f.index)) {
-                continue;
-            }
-            let (f0, f1) = (line[f.index], line[f.index + 1]);
-            if let Some((s, r, ez, fz, _)) = intersect(a, b, f0, f1) {
-                let ft = f.t + r * KEY_POINTS as f32 / FABRIC_SAMPLES_PER_LOOP as f32;
+            // Both of the sample's segments: the yarn may cross the edge on either side of
+            // the one sample near it (a crossing between two samples farther than the
+            // clearance from the edge's measured points was missed, and the edge, taking the
+            // side it is on at each point, was asked to be on both sides of that yarn).
+            for index in f.index.checked_sub(1).into_iter().chain([f.index]) {
+                if index + 1 >= line.len() || !tried.insert((f.line, index)) {
+                    continue;
+                }
+                let (f0, f1) = (line[index], line[index + 1]);
+                let Some((s, r, ez, fz, _)) = intersect(a, b, f0, f1) else {
+                    continue;
+                };
+                let ft = f.t
+                    + (index as f32 - f.index as f32 + r) * KEY_POINTS as f32
+                        / FABRIC_SAMPLES_PER_LOOP as f32;
                 let at = FabricSample { t: ft, ..*f };
                 let above = front(ta + s * (tb - ta), &at).unwrap_or(ez >= fz);
                 out[f.line].push((a.lerp(b, s).truncate(), above));
@@ -428,10 +437,18 @@ impl FabricNear {
                     .filter(|p| p.0 == k)
                     .map(|&(k, f, gap, planar)| {
                         let q = a.lerp(b, k as f32 / SUBDIVISIONS as f32).truncate();
-                        let crossing = crossings[f.line].iter().find(|&&(at, _)| {
-                            metric.length(f.p.truncate() - at) < 0.5 * clearance
-                                && metric.length(q - at) < clearance
-                        });
+                        // The crossing of this yarn nearest the sample, if both the sample
+                        // and the point are within the clearance of it (the samples lie
+                        // half a clearance apart, so the two beside a crossing can both be
+                        // more than half of one from it).
+                        let crossing = crossings[f.line]
+                            .iter()
+                            .map(|&(at, above)| (metric.length(f.p.truncate() - at), at, above))
+                            .filter(|&(from_sample, at, _)| {
+                                from_sample < clearance && metric.length(q - at) < clearance
+                            })
+                            .min_by(|x, y| x.0.total_cmp(&y.0))
+                            .map(|(_, at, above)| (at, above));
                         (f.p.z, planar, crossing.map_or(gap >= 0.0, |c| c.1))
                     }),
             );

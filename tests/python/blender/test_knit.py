@@ -77,18 +77,17 @@ def test_operator_and_api_agree(api: ModuleType) -> None:
 
 
 def test_live_loops_reach_the_core(api: ModuleType) -> None:
-    """Live Loops (on by default; off finishes the knit with a cast-on and a bind-off) reaches
-    the core: the patch, open in v, gains exactly its two edge pieces and keeps the same
-    fabric."""
+    """Live Loops (off: the knit is finished with a cast-on and a bind-off) reaches the core:
+    the patch, open in v, loses exactly its two edge pieces and keeps the same fabric."""
     source = nurbs_patch()
-    finished = api.knit_result(source, **(SMALL | {"live_loops": False}))
-    live = api.knit_result(source, **SMALL)
+    finished = api.knit_result(source, **SMALL)
+    live = api.knit_result(source, **(SMALL | {"live_loops": True}))
     assert finished.stats["yarn_pieces"] == live.stats["yarn_pieces"] + 2
     n = len(live.centerline_points)
     np.testing.assert_array_equal(finished.centerline_points[:n], live.centerline_points)
-    knit = knit_with_operator(**(SMALL | {"live_loops": False}))
-    assert knit.knitwear.live_loops is False
-    assert len(knit.data.vertices) == len(finished.vertices)
+    knit = knit_with_operator(**(SMALL | {"live_loops": True}))
+    assert knit.knitwear.live_loops is True
+    assert len(knit.data.vertices) == len(live.vertices)
 
 
 def test_material_is_shared(api: ModuleType) -> None:

@@ -41,8 +41,9 @@ def test_knit_returns_blender_ready_buffers() -> None:
     assert t.min() >= 0 and t.max() < len(v)
     assert np.isfinite(v).all()
     offsets = r.course_offsets
-    assert offsets.shape == (11,) and offsets[0] == 0 and offsets[-1] == len(r.centerline_points)
-    assert r.yarn_course.tolist() == list(range(10))
+    # Ten courses, then the cast-on under the first and the bind-off over the last.
+    assert offsets.shape == (13,) and offsets[0] == 0 and offsets[-1] == len(r.centerline_points)
+    assert r.yarn_course.tolist() == list(range(10)) + [0, 9]
     assert r.stats["stitches"] == 120 and r.stats["triangles"] == len(t)
     # The yarn of course i is the slice between its offsets.
     yarn = r.centerline_points[offsets[3] : offsets[4]]
@@ -215,9 +216,7 @@ def test_interlock_is_exposed_and_whole() -> None:
     between a course and the loops it is pulled through are the right way round."""
     surface = knitwear.GridSurface(*plane_grid())
     for name in ("stockinette", "rib_1x1", "seed", "cable_c4"):
-        r = knitwear.knit(
-            surface, knitwear.Pattern.preset(name), measure_clearance=True, live_loops=False
-        )
+        r = knitwear.knit(surface, knitwear.Pattern.preset(name), measure_clearance=True)
         decided, agree = r.stats["interlock"]
         assert decided > 0 and agree == decided, (name, decided, agree)
         # Finished with a cast-on and a bind-off: every loop is held, every stitch pulled
@@ -228,13 +227,12 @@ def test_interlock_is_exposed_and_whole() -> None:
 
 
 def test_live_loops_leave_the_edges_unfinished() -> None:
-    """`live_loops=True` (the default) knits the fabric alone: the same yarn, without the
-    cast-on and the bind-off, so the last course's loops and the first course's feet hang
-    free."""
+    """`live_loops=True` knits the fabric alone: the same yarn, without the cast-on and the
+    bind-off, so the last course's loops and the first course's feet hang free."""
     surface = knitwear.GridSurface(*plane_grid())
     pattern = knitwear.Pattern.preset("stockinette")
-    finished = knitwear.knit(surface, pattern, measure_clearance=True, live_loops=False)
-    live = knitwear.knit(surface, pattern, measure_clearance=True)
+    finished = knitwear.knit(surface, pattern, measure_clearance=True)
+    live = knitwear.knit(surface, pattern, measure_clearance=True, live_loops=True)
     wales = live.stats["wales"]
     assert finished.stats["yarn_pieces"] == live.stats["yarn_pieces"] + 2
     assert live.stats["free_loops"] == (wales, wales)
