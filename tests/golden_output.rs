@@ -1,7 +1,9 @@
 //! Every preset's knit, bit for bit: the digests of its output buffers on a small sheet at
 //! the default settings and the add-on's irregularity (kappa 0.005), with live loops (the
 //! fabric alone: recorded before the house was rearranged, "One source per setting", and
-//! unchanged by the cast-on and bind-off since) and finished with them (the default). A
+//! unchanged by the cast-on and bind-off since; eyelet rows and the lace diamond re-recorded
+//! when a yarn-over whose decrease the sheet's edge cuts off came to be knitted plain) and
+//! finished with them (the default). A
 //! refactor that changes one bit of any preset's yarn, colours or topology fails here; so
 //! does a machine or thread count that knits differently from the one that recorded them.
 //!
@@ -40,8 +42,8 @@ const GOLDEN: &[(&str, u64, u64)] = &[
     ("diamond", 0xee9368b15ba67fd7, 0xcb15a7ce7b8a2647),
     ("chevron", 0x28511bf8fa5000e6, 0xe07671d576f65dd8),
     ("feather_and_fan", 0x0a67fbb8e808bc58, 0xeea5c93534cb06ba),
-    ("eyelet_rows", 0x19277471a2521ee6, 0xbd59d0f5c3a0fccc),
-    ("lace_diamond", 0x0179d33671a6498c, 0xbc286a95d3790e81),
+    ("eyelet_rows", 0xd7165898331db8cd, 0x9da208b8087c2a49),
+    ("lace_diamond", 0x62b6d8c14ab28d26, 0x34b25ed9cb27df5d),
     ("bobbles", 0x6d0cc9c0106cbe63, 0xcec11043e005d8f5),
     ("linen_stitch", 0x51685d4f54ff1696, 0xc211d858cf05c2c1),
     ("fair_isle", 0xeb53742a8d884b92, 0xc0030bcfdacbc623),

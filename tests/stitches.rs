@@ -79,6 +79,63 @@ fn cable_loops_lean_to_where_they_are_picked_up_and_cross_in_front_or_behind() {
     }
 }
 
+/// "K1, *yo, k2tog" on an even count of stitches: the last repeat's k2tog falls off the
+/// sheet, and the loop under its yarn-over, gathered by nothing, would be dropped (before
+/// this rule a yarn-over stood over it, and at the add-on's irregularity its sinker crossed
+/// that loop's head on the wrong side: 5 of 3,130 interlock crossings). A knitter works the
+/// stitch left over plain; so does the skeleton, and every loop is held.
+#[test]
+fn a_yarn_over_whose_decrease_the_edge_cuts_off_is_knitted_plain() {
+    use knitwear::lattice::Lattice;
+    use knitwear::pattern::Form;
+    use knitwear::skeleton::stitch_shape::knitted_form;
+    use knitwear::surface::UvRect;
+    let pattern = StitchPattern::preset("eyelet_rows").unwrap();
+    let domain = UvRect {
+        min: glam::Vec2::ZERO,
+        max: glam::Vec2::new(24.0, 12.0 + 2.0 * knitwear::lattice::ROW_OVERHANG),
+    };
+    let lattice = Lattice::regular(domain, 12, 24, false, false);
+    // Row 5 (course 4): yarn-overs in the odd columns, the k2tog beside each gathering the
+    // loop under it; the last column's k2tog would be column 24.
+    assert_eq!(pattern.stitch(4, 23).form, Form::YarnOver);
+    assert_eq!(knitted_form(&lattice, &pattern, 4, 23), Form::Plain);
+    for w in (1..23).step_by(2) {
+        assert_eq!(
+            knitted_form(&lattice, &pattern, 4, w),
+            Form::YarnOver,
+            "column {w}"
+        );
+    }
+    // Round a tube of whole repeats every yarn-over stays one.
+    let tube = Lattice::regular(domain, 12, 24, true, false);
+    assert_eq!(knitted_form(&tube, &pattern, 4, 23), Form::YarnOver);
+    // The knit: at the add-on's irregularity, every loop held and every crossing right.
+    let sheet = PlaneSurface {
+        width: 0.12,
+        height: 0.12,
+    };
+    for live_loops in [true, false] {
+        let p = KnitParams {
+            threads: Some(2),
+            kappa: ADDON_KAPPA,
+            live_loops,
+            ..KnitParams::default()
+        };
+        let knit = PreparedKnit::new(&sheet, &pattern, &p).unwrap();
+        let order = knit.crossing_order(&sheet).unwrap();
+        assert_eq!(order.interlock_agree, order.interlock_decided, "{order:?}");
+        assert_eq!(order.agree, order.decided, "{order:?}");
+        // With live loops only the top course's loops and the first course's feet are free.
+        let free = if live_loops { 24 } else { 0 };
+        assert_eq!(
+            (order.free_loops, order.free_feet),
+            (free, free),
+            "{order:?}"
+        );
+    }
+}
+
 #[test]
 fn a_yarn_over_stops_short_over_a_hole_and_a_decrease_gathers_two_heads() {
     let (k, p) = (I::Knit, I::Purl);

@@ -37,7 +37,7 @@
 use glam::{Vec2, Vec3};
 
 use super::edges::Edge;
-use super::stitch_shape::landing;
+use super::stitch_shape::{knitted_form, landing};
 use super::{YarnPiece, KEY_POINTS};
 use crate::lattice::Lattice;
 use crate::pattern::{Face, Form, StitchPattern};
@@ -398,7 +398,7 @@ pub fn crossing_order(
         for j in 0..pc.stitches {
             let wale = (pc.first_wale + j) % lattice.wales;
             let fastened = pc.edge == Some(Edge::BindOff) && !pc.closed && j + 1 == pc.stitches;
-            let form = pattern.stitch(pc.course, wale).form;
+            let form = knitted_form(lattice, pattern, pc.course, wale);
             // A slipped stitch's float is no loop, nor is the cast-on's strand under a
             // yarn-over or a made stitch.
             let float = match pc.edge {
@@ -411,7 +411,7 @@ pub fn crossing_order(
                 result.free_loops += usize::from(!held.contains(&(row, wale)));
             }
             let no_loop_below = matches!(
-                pattern.stitch(pc.course, wale).form,
+                knitted_form(lattice, pattern, pc.course, wale),
                 Form::YarnOver | Form::MakeOne | Form::Slip { .. }
             );
             if pc.edge.is_none() && !no_loop_below {
@@ -542,7 +542,13 @@ fn puller(
         return None;
     }
     let w = landing(lattice, pattern, course, wale).rem_euclid(lattice.wales as isize) as usize;
-    Some((c, w))
+    // A yarn-over or a made stitch is pulled through no loop: a loop under one (as knitted)
+    // is held by nothing, and counts as free.
+    let pulls = !matches!(
+        knitted_form(lattice, pattern, c, w),
+        Form::YarnOver | Form::MakeOne
+    );
+    pulls.then_some((c, w))
 }
 
 /// The part of a loop, and the stitch of its piece it belongs to, at spline parameter `t`

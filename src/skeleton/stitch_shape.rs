@@ -88,6 +88,36 @@ pub fn group_on_fabric(
     here + lo >= 0 && here + hi < end
 }
 
+/// The form stitch (course, wale) is knitted with on this fabric: the pattern's, except
+/// that a yarn-over or a made stitch over a loop that nothing else pulls through is knitted
+/// plain. In a whole repeat the loop under a yarn-over is gathered by the decrease beside
+/// it; where an edge or a seam cuts that decrease off, the loop stays in its own column
+/// ([`landing`]) under the yarn-over, which is pulled through nothing: the loop would be
+/// dropped. A knitter works the stitches left after the last whole repeat plain, and so
+/// does this: "K1, *yo, k2tog" on an even count ends in a knit stitch, not a yarn-over
+/// over a dropped loop. The first course is left as written (the cast-on under it has no
+/// loop under a yarn-over), and so is a yarn-over over a slipped stitch.
+pub fn knitted_form(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    course: usize,
+    wale: usize,
+) -> Form {
+    let form = pattern.stitch(course, wale).form;
+    if !matches!(form, Form::YarnOver | Form::MakeOne) || course == 0 {
+        return form;
+    }
+    let below = pattern.stitch(course - 1, wale);
+    let pulled_here = !matches!(below.form, Form::Slip { .. })
+        && below.rise == 0
+        && landing(lattice, pattern, course - 1, wale) == wale as isize;
+    if pulled_here {
+        Form::Plain
+    } else {
+        form
+    }
+}
+
 /// Whether a piece knits every row of `wale` as the pattern says: false where its edge cuts
 /// a crossing or a decrease of some row in that wale ([`group_on_fabric`]). Such a wale is
 /// knitted as the pattern straightened ([`StitchPattern::straightened`]), with a relief made
@@ -127,6 +157,7 @@ pub fn stitch_key_points(
     let wales = lattice.wales;
     let w = wale % wales;
     let mut this = pattern.stitch(course, w);
+    this.form = knitted_form(lattice, pattern, course, w);
     // A crossing or a decrease the fabric holds only part of is knitted straight: its loops
     // pass no other loop and take no corrections made for the whole of it. A wale knitted
     // straight in some row takes the relief made for the pattern straightened.
