@@ -10,8 +10,10 @@
 //! result is bit for bit the same for any number of threads.
 
 mod cover;
+mod holes;
 
-pub use cover::cover;
+pub use cover::{cover, cover_mask};
+pub use holes::{holes, Holes};
 
 use glam::Vec3;
 use rayon::prelude::*;

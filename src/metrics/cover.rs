@@ -23,6 +23,22 @@ pub fn cover(
     max: Vec2,
     resolution: usize,
 ) -> f64 {
+    match cover_mask(yarns, radius, min, max, resolution) {
+        Some(mask) => mask.iter().filter(|&&h| h).count() as f64 / (resolution * resolution) as f64,
+        None => f64::NAN,
+    }
+}
+
+/// The pixels [`cover`] counts: row by row from `min.y` (row-major, `resolution` x
+/// `resolution`), true where a pixel centre lies within `radius` of a projected segment.
+/// `None` where [`cover`] gives NaN.
+pub fn cover_mask(
+    yarns: &[(&[Vec3], bool)],
+    radius: f32,
+    min: Vec2,
+    max: Vec2,
+    resolution: usize,
+) -> Option<Vec<bool>> {
     let size = max - min;
     let valid = radius.is_finite()
         && radius > 0.0
@@ -31,7 +47,7 @@ pub fn cover(
         && size.y > 0.0
         && resolution > 0;
     if !valid {
-        return f64::NAN;
+        return None;
     }
     let px = size / resolution as f32;
     // Segments binned by the pixel rows their disc-swept box touches.
@@ -56,12 +72,12 @@ pub fn cover(
         }
     }
     let r2 = radius * radius;
-    let covered: usize = rows
-        .par_iter()
+    let mut mask = vec![false; resolution * resolution];
+    mask.par_chunks_mut(resolution)
+        .zip(rows.par_iter())
         .enumerate()
-        .map(|(i, segs)| {
+        .for_each(|(i, (hit, segs))| {
             let y = min.y + (i as f32 + 0.5) * px.y;
-            let mut hit = vec![false; resolution];
             for &(a, b) in segs {
                 let x_lo = a.x.min(b.x) - radius;
                 let x_hi = a.x.max(b.x) + radius;
@@ -86,10 +102,8 @@ pub fn cover(
                     *h = (a + t * d - p).length_squared() <= r2;
                 }
             }
-            hit.iter().filter(|&&h| h).count()
-        })
-        .sum();
-    covered as f64 / (resolution * resolution) as f64
+        });
+    Some(mask)
 }
 
 #[cfg(test)]
