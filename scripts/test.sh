@@ -20,12 +20,20 @@ cargo test --quiet
 echo "== pytest: core API without Blender"
 PYTHONPATH="$root/build/site" .venv/bin/python -m pytest -q tests/python/core
 
+# Each Blender run that passes is recorded for the README's table of versions tested.
+.venv/bin/python scripts/blender_matrix.py reset
+
 echo "== pytest: extension in headless Blender 5.2 (the newest)"
-.venv-blender52/bin/python -m pytest -q tests/python/blender
+.venv-blender52/bin/python -m pytest -q tests/python/blender --junitxml=build/blender-suite.xml
+.venv/bin/python scripts/blender_matrix.py suite .venv-blender52/bin/python build/blender-suite.xml
 
 # The other Blender versions (a crash at exit fails here too): 4.2 and 4.5 LTS, and 5.0 (the
 # bpy of .venv).
 for python in .venv-blender42/bin/python .venv-blender45/bin/python .venv/bin/python; do
   echo "== smoke: the extension in the bpy of $python"
-  "$python" scripts/smoke_blender.py
+  "$python" scripts/smoke_blender.py | tee build/smoke.log
+  .venv/bin/python scripts/blender_matrix.py smoke "$python" build/smoke.log
 done
+
+echo "== the README's table of Blender versions, from these runs"
+.venv/bin/python scripts/blender_matrix.py write
