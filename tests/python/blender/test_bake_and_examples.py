@@ -12,7 +12,7 @@ from types import ModuleType
 import bpy
 import numpy as np
 import pytest
-from blender_scenes import SMALL, positions
+from blender_scenes import SMALL, camera, positions
 from conftest import ROOT, _extension_zip
 from test_follow import waving_cloth
 
@@ -176,3 +176,91 @@ def test_baking_to_a_path_that_cannot_be_a_file_is_a_clear_error(
     assert not any(m.type == "MESH_CACHE" for m in knit.modifiers)
     assert knit.knitwear.follow_source and bpy.context.scene.frame_current == 1
     np.testing.assert_array_equal(positions(knit.data), before)
+
+
+# Opens a .blend in a Blender with no extension installed and renders its scene camera at a
+# frame to a PNG.
+_RENDER_WITHOUT_EXTENSION = """
+import sys, bpy
+bpy.ops.wm.open_mainfile(filepath=sys.argv[1])
+assert "bl_ext.user_default.knitwear" not in bpy.context.preferences.addons
+scene = bpy.context.scene
+scene.frame_set(int(sys.argv[3]))
+scene.render.filepath = sys.argv[2]
+bpy.ops.render.render(write_still=True)
+"""
+
+
+def _workbench(path: Path) -> np.ndarray:
+    from PIL import Image
+
+    return np.asarray(Image.open(path).convert("RGBA"), dtype=np.int16)
+
+
+def test_a_baked_scene_packed_by_bat_renders_on_a_farm_without_the_extension(
+    api: ModuleType, tmp_path: Path
+) -> None:
+    """Issue 21: the scene a farm gets. Blender's own farm (Flamenco) ships a .blend with what
+    it needs as packed by blender-asset-tracer (BAT); the pack must carry the knit's point
+    cache and render, from another folder and in a Blender without the extension, the image
+    the artist rendered."""
+    scene = bpy.context.scene
+    source = waving_cloth()
+    knit = api.knit_object(source, **SMALL)
+    source.hide_render = True
+    camera((0.0, -0.75, 0.55), (0.0, 0.0, 0.0))
+    scene.render.resolution_x, scene.render.resolution_y = 240, 180
+    scene.render.engine = "BLENDER_WORKBENCH"
+    scene.render.film_transparent = True
+    scene.display.shading.color_type = "VERTEX"
+    scene.render.image_settings.file_format = "PNG"
+    scene.frame_end = 10
+    project = tmp_path / "project"
+    project.mkdir()
+    blend = project / "scene.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+    knit = bpy.data.objects[knit.name]
+    bpy.context.view_layer.objects.active = knit
+    assert bpy.ops.object.knitwear_bake() == {"FINISHED"}  # the cache goes next to the .blend
+    bpy.ops.wm.save_mainfile()
+    frames = {}
+    for frame in (1, 7):
+        scene.frame_set(frame)
+        scene.render.filepath = str(tmp_path / f"artist_{frame}.png")
+        bpy.ops.render.render(write_still=True)
+        frames[frame] = _workbench(tmp_path / f"artist_{frame}.png")
+    artist = frames[7]
+
+    # BAT's own command line, as a farm submission runs it (it loads the file in bpy).
+    target = tmp_path / "farm" / "pack"
+    packed = subprocess.run(
+        # With the bpy module, BAT runs in this Python and reads its arguments after "--".
+        [str(Path(sys.executable).parent / "bat"), "--", "pack", "--project", str(project),
+         str(blend), str(target)],
+        capture_output=True, text=True, check=False, timeout=300,
+    )
+    assert packed.returncode == 0, packed.stdout[-2000:] + packed.stderr[-2000:]
+    cache = f"{bpy.path.clean_name(knit.name)}.pc2"
+    assert (target / cache).is_file(), sorted(p.name for p in target.rglob("*"))
+    # Only the pack is left to read: the artist's folder is gone.
+    project.rename(tmp_path / "moved")
+
+    env = dict(os.environ, BLENDER_USER_RESOURCES=tempfile.mkdtemp(prefix="no-extension-"))
+    farm = tmp_path / "farm.png"
+    done = subprocess.run(
+        [sys.executable, "-c", _RENDER_WITHOUT_EXTENSION, str(target / "scene.blend"),
+         str(farm), "7"],
+        capture_output=True, text=True, env=env, check=False, timeout=300,
+        cwd=tmp_path / "farm",
+    )
+    assert done.returncode == 0 and farm.exists(), done.stdout[-2000:] + done.stderr[-2000:]
+    rendered = _workbench(farm)
+    difference = np.abs(rendered - artist)
+    differ = np.count_nonzero(difference.max(axis=2))
+    print(f"pack render against the artist's: max {difference.max()}, {differ} of "
+          f"{difference.shape[0] * difference.shape[1]} pixels differ")
+    # The knit fills much of the frame, and frame 7 shows the wave (the knit as knitted, flat,
+    # is frame 1): a pack without the cache would render the flat knit.
+    assert np.count_nonzero(artist[..., 3]) > 0.3 * artist[..., 3].size
+    assert np.count_nonzero(np.abs(frames[1] - artist).max(axis=2)) > 0.05 * artist[..., 3].size
+    np.testing.assert_array_equal(rendered, artist)
