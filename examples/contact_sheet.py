@@ -2,16 +2,23 @@
 
 Each pattern x colourway is knitted on the same small NURBS swatch with the scripting API,
 rendered headless with Workbench, and pasted into one labelled PNG (one row per pattern, one
-column per colourway):
+column per colourway). The tiles are jobs of the batch runner (`batch_render.py`): rendered
+side by side on local worker processes, or on a Dask cluster, and only the missing ones when
+the sheet is made again:
 
     .venv/bin/python examples/contact_sheet.py --out out/sheet
     .venv/bin/python examples/contact_sheet.py --patterns seed rib_1x1 --out out/sheet
+    .venv/bin/python examples/contact_sheet.py --out out/sheet --scheduler tcp://farm:8786
+
+With `--output`, it renders the one tile of `--pattern` and `--colourway` (what a job runs).
 """
 
 import argparse
+import sys
 import time
 from pathlib import Path
 
+from batch_render import grid, run_batch
 from example_setup import ROOT, extension_zip, look_at, start_blender, workbench
 from PIL import Image, ImageDraw
 
@@ -31,6 +38,11 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--colourways", nargs="+", choices=sorted(COLOURWAYS),
                         default=list(COLOURWAYS))
     parser.add_argument("--tile", type=int, nargs=2, default=(320, 240), metavar=("W", "H"))
+    parser.add_argument("--workers", type=int, default=2, help="local worker processes")
+    parser.add_argument("--scheduler", help="a Dask scheduler's address (tcp://host:port)")
+    parser.add_argument("--pattern", help="with --output: the one tile's pattern")
+    parser.add_argument("--colourway", choices=sorted(COLOURWAYS), help="with --output")
+    parser.add_argument("--output", type=Path, help="render one tile to this PNG")
     return parser.parse_args()
 
 
@@ -84,29 +96,44 @@ def render_one(
 
 def main() -> None:
     args = parse_args()
+    zip_path = extension_zip(args.zip)
+    if args.output is not None:  # one tile: a job of the batch
+        if not args.pattern or not args.colourway:
+            sys.exit("contact_sheet: --output needs --pattern and --colourway")
+        start_blender(zip_path)
+        render_one(args.pattern, COLOURWAYS[args.colourway], args.output, tuple(args.tile))
+        return
     args.out.mkdir(parents=True, exist_ok=True)
-    start_blender(extension_zip(args.zip))
-    import knitwear
+    if args.patterns:
+        patterns = args.patterns
+    else:
+        start_blender(zip_path)
+        import knitwear
 
-    patterns = args.patterns or knitwear.Pattern.presets()
+        patterns = knitwear.Pattern.presets()
     w, h = args.tile
+    jobs = grid(
+        Path(__file__).resolve(), args.out.resolve(),
+        variations={"pattern": patterns, "colourway": args.colourways},
+        extra=["--tile", str(w), str(h), "--zip", str(zip_path.resolve())],
+    )
+    t0 = time.perf_counter()
+    report = run_batch(jobs, scheduler=args.scheduler, workers=args.workers)
     label_w, label_h = 160, 24
     sheet = Image.new("RGB", (label_w + w * len(args.colourways), label_h + h * len(patterns)),
                       (24, 24, 28))
     draw = ImageDraw.Draw(sheet)
     for j, way in enumerate(args.colourways):
         draw.text((label_w + j * w + 8, 6), way, fill=(230, 230, 230))
-    t0 = time.perf_counter()
     for i, pattern in enumerate(patterns):
         draw.text((8, label_h + i * h + h // 2), pattern, fill=(230, 230, 230))
         for j, way in enumerate(args.colourways):
             png = args.out / f"{pattern}_{way}.png"
-            render_one(pattern, COLOURWAYS[way], png, (w, h))
             sheet.paste(Image.open(png).convert("RGB"), (label_w + j * w, label_h + i * h))
     path = args.out / "contact_sheet.png"
     sheet.save(path)
-    count = len(patterns) * len(args.colourways)
-    print(f"contact_sheet: {count} knits rendered in {time.perf_counter() - t0:.1f} s -> {path}")
+    print(f"contact_sheet: {report['rendered']} knits rendered ({report['skipped']} already "
+          f"there) in {time.perf_counter() - t0:.1f} s -> {path}")
 
 
 if __name__ == "__main__":

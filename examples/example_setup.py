@@ -54,6 +54,10 @@ def workbench(width: int, height: int, path: Path, *, aa: str = "8") -> None:
     shading.show_specular_highlight = False  # wool has no gloss
     scene.view_settings.view_transform = "Standard"
     scene.render.image_settings.file_format = "PNG"
+    # No date or render time in the PNG's metadata: the same frame is the same file on every
+    # run and every machine (a farm's frame can be checked against one rendered alone).
+    scene.render.use_stamp_date = False
+    scene.render.use_stamp_render_time = False
     scene.render.filepath = str(path)
 
 
