@@ -50,7 +50,14 @@ def _rendering(worker: subprocess.Popen[str]) -> list[psutil.Process]:
         tree = psutil.Process(worker.pid).children(recursive=True)
     except psutil.NoSuchProcess:
         return []
-    return [p for p in tree if "contact_sheet.py" in " ".join(p.cmdline())]
+    found = []
+    for p in tree:
+        try:  # a process may end (or be a zombie) between the listing and this look
+            if "contact_sheet.py" in " ".join(p.cmdline()):
+                found.append(p)
+        except psutil.Error:
+            continue
+    return found
 
 
 def _ledger(out: Path) -> list[str]:
@@ -101,7 +108,7 @@ def test_a_killed_worker_reruns_and_every_image_matches_one_process(
     while not (_rendering(victim) and (farm / "batch-ledger.jsonl").exists()):
         assert batch.poll() is None and time.monotonic() < deadline, "no worker got a job"
         time.sleep(0.05)
-    lost = [p.cmdline() for p in _rendering(victim)]
+    lost = [p.pid for p in _rendering(victim)]
     os.killpg(victim.pid, signal.SIGKILL)
     victim.wait()
     out = _finish(batch)
