@@ -57,8 +57,15 @@ fn main() {
             800,
         );
         let cl = out.stats.clearance.unwrap();
+        // The furthest centreline point from the sheet, in diameters: half the fabric's
+        // thickness less a radius.
+        let depth = out
+            .centerline
+            .chunks(3)
+            .fold(0.0f32, |m, c| m.max(c[2].abs()))
+            / (2.0 * out.yarn_radius);
         println!(
-            "{name:20} interlock {}/{} ({:.3}) buckets {}/{} other {}/{} undecided {} free loops {}/{} free feet {}/{} clearance {:.3} p01 {:.3} cover {:.3} prep {:.2}s",
+            "{name:20} interlock {}/{} ({:.3}) buckets {}/{} other {}/{} undecided {} free loops {}/{} free feet {}/{} clearance {:.3} p01 {:.3} cover {:.3} depth {depth:.2} prep {:.2}s",
             order.interlock_agree, order.interlock_decided, order.interlock(),
             order.buckets_half_front, order.buckets,
             order.agree - order.interlock_agree, order.decided - order.interlock_decided,

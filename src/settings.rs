@@ -242,7 +242,7 @@ pub const YARN_RADIUS: Setting = Setting {
     addon_why: "0 stands for the core's automatic radius (a Blender property cannot be None); \
                 the core takes None for it and refuses 0",
     unit: "scene units",
-    doc: "Radius of the yarn in scene units; 0 = automatic, a tenth of the stitch width (the \
+    doc: "Radius of the yarn in scene units; 0 = automatic, an eighth of the stitch width (the \
           thickness the core's loop shapes are tuned for)",
     ..float("yarn_radius", "Yarn Radius", 0.0, (0.0, f64::INFINITY))
 };

@@ -143,7 +143,9 @@ fn the_fabric_between_the_edges_is_knitted_as_with_live_loops() {
 }
 
 /// The edges stay within about two thirds of a row of the fabric's first and last courses,
-/// hanging at most half a row past the surface's border, and follow the sheet's plane.
+/// hanging at most three quarters of a row past the surface's border (the bind-off sits on
+/// the last course's heads, which reach a third of a row into the row above), and follow
+/// the sheet's plane.
 #[test]
 fn the_edges_hug_the_border() {
     let sheet = PlaneSurface {
@@ -169,7 +171,7 @@ fn the_edges_hug_the_border() {
         let border = if want_bottom { 0.0 } else { 0.05 };
         let (near, far) = if want_bottom { (hi, lo) } else { (lo, hi) };
         assert!(
-            (far - border).abs() < 0.5 * row,
+            (far - border).abs() < 0.75 * row,
             "piece {i}: reaches {far} past the border {border} (row {row})"
         );
         assert!(

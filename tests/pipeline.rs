@@ -256,15 +256,15 @@ fn clearance_at_default_settings_on_four_surfaces() {
                 st.courses, st.wales
             );
             assert!(min >= PLAIN_FLOOR, "{name} on {sname}: clearance {min}");
-            // The default yarn is at least a fifth of a stitch wide.
-            assert!(2.0 * out.yarn_radius >= 0.2 * st.stitch_width * 0.999);
+            // The default yarn is a quarter of a stitch wide.
+            assert!(2.0 * out.yarn_radius >= 0.25 * st.stitch_width * 0.999);
             assert!(st.stitches_skipped == 0 || *sname == "uv mesh");
         }
     }
 }
 
 #[test]
-fn fabric_is_at_most_three_diameters_thick() {
+fn fabric_is_at_most_seven_diameters_thick() {
     let out = knit(
         &sheet(),
         &StitchPattern::preset("garter").unwrap(),
@@ -272,12 +272,14 @@ fn fabric_is_at_most_three_diameters_thick() {
     )
     .unwrap();
     let d = 2.0 * out.yarn_radius;
-    // Centrelines within 1.8 diameters of the surface. Interlocked garter needs the contact
-    // relief on top of the tuned offsets (1.76 measured), which thickens the fabric to about
-    // 4.6 diameters: thicker than real garter (about 3), one of the loop shapes that
+    // Centrelines within 3 diameters of the surface. The tuned offsets reach one and a half
+    // diameters (the quarter-stitch yarn needs the depth to clear), and interlocked garter
+    // needs the contact relief on top of them (2.85 measured; 1.76 with the fifth-of-a-stitch
+    // yarn and offsets within one diameter), which thickens the fabric to about 6.7
+    // diameters: far thicker than real garter (about 3), one of the loop shapes that
     // "Knitted, not stacked" still has to relax.
     let off = max_offset_from_plane_like(&out, &sheet());
-    assert!(off <= 1.8 * d, "max normal offset {off} for diameter {d}");
+    assert!(off <= 3.0 * d, "max normal offset {off} for diameter {d}");
 }
 
 #[test]

@@ -67,7 +67,7 @@ fn a_single_colour_knit_is_that_colour_where_the_yarn_is() {
 fn yarn_covers_a_plausible_fraction_of_the_fabric() {
     let img = knit_texture(&PLANE, &stockinette(), &params(16, 16), 512, 512).unwrap();
     let coverage: f32 = img.pixels.chunks_exact(4).map(|p| p[3]).sum::<f32>() / (512.0 * 512.0);
-    // A yarn a fifth of a stitch thick, two legs and a loop per stitch: most, not all.
+    // A yarn a quarter of a stitch thick, two legs and a loop per stitch: most, not all.
     assert!(
         (0.35..0.95).contains(&coverage),
         "yarn covers {coverage} of the image"

@@ -35,7 +35,7 @@ use crate::pattern::{Form, Stitch, StitchPattern};
 use crate::surface::{Surface, SurfacePoint};
 
 /// Where a point of an edge at (u, v) lies: on the surface, or past an open v end of the
-/// domain (the edges reach up to about half a row beyond it), carried on along the
+/// domain (the edges reach up to about three quarters of a row beyond it), carried on along the
 /// surface's tangent there, `step` (in v) measured back from the border. At a pole, and for a
 /// point off every UV island, the nearest point of the surface.
 pub fn beyond_border(surface: &dyn Surface, uv: Vec2, step: f32) -> SurfacePoint {
@@ -98,6 +98,8 @@ pub const BIND_OFF_RIGHT_LEG_TOP: (f32, f32) = (0.85, 0.26);
 /// How far behind the next loop's legs (for a knit) a bind-off head lies, in diameters:
 /// between them and the head of the last course that loop is pulled through.
 pub const BIND_OFF_HEAD_DEPTH: f32 = 1.1;
+/// The least depth of a bind-off loop's legs on its face side, in diameters.
+pub const BIND_OFF_LEG_DEPTH: f32 = 0.75;
 
 /// The edge pieces of a fabric whose stitches `fabric` (row-major) have a surface, over
 /// the stitches `kept` (a subset of them: those built at this detail), in course order,
@@ -358,14 +360,23 @@ fn bind_off_stitch(
         // The head passes the next loop's left leg where it crosses, two thirds of the way
         // up from its foot, a diameter and more on the chain's side.
         let (_, next_l, next_leg) = bind_off_legs(lattice, pattern, offsets, course, wale + 1);
+        // The chain's side is the next loop's face: its legs need only keep a diameter from
+        // the head below, so their depth may have either sign.
+        let side = plain_and_left(lattice, pattern, course + 1, wale + 1)
+            .0
+            .side();
         let crossing = 0.4 * next_l[1] + 0.6 * next_leg;
-        let head = crossing - next_leg.signum() * BIND_OFF_HEAD_DEPTH * offsets.diameter;
+        let head = crossing - side * BIND_OFF_HEAD_DEPTH * offsets.diameter;
         // Placed in the next column's tile: rows of leaning loops are shaped column by
         // column, so the next tile's top need not continue this one's.
         let n = tile_at(lattice, course, wale as isize + 1);
         let (x, y) = BIND_OFF_HEAD;
         let head_at = n.n0 + (x - 1.0) * (n.n1 - n.n0) + (s.head_reach + y) * (n.n0 - n.n3);
-        (head_at, head, at(BIND_OFF_RIGHT_LEG_TOP), 0.5 * leg)
+        // The yarn comes back from the head across the next loop's leg a second time, on
+        // the same side: the right leg top stays no further towards that leg than the head
+        // and half a diameter.
+        let right = side * (side * 0.5 * leg).min(side * head + 0.5 * offsets.diameter);
+        (head_at, head, at(BIND_OFF_RIGHT_LEG_TOP), right)
     };
     let points: [(Vec2, f32); KEY_POINTS] = [
         (
@@ -458,7 +469,14 @@ fn bind_off_legs<'a>(
         .max(0.0);
     l[1] += side * out;
     l[5] += side * out;
-    let leg = side * leg_depth(&l).max(clear(2)).max(clear(4));
+    // At least BIND_OFF_LEG_DEPTH out on the face side: the previous loop's head passes
+    // behind the legs (for a knit) on its way down, and a leg near the surface, which the
+    // head below would allow where it lies far back, leaves the head no room to get past.
+    let leg = side
+        * leg_depth(&l)
+            .max(clear(2))
+            .max(clear(4))
+            .max(BIND_OFF_LEG_DEPTH * offsets.diameter);
     (offsets, l, leg)
 }
 

@@ -15,7 +15,8 @@
 //!   and halfway between where the stitch to its left differs (a knit/purl boundary, where the
 //!   yarn goes from front to back): `-e * (side(self) + side(left)) / 2`.
 //!
-//! With every magnitude at most one yarn diameter the fabric is at most three diameters thick.
+//! With every magnitude at most one and a half yarn diameters the fabric is at most four
+//! diameters thick.
 
 use std::sync::Arc;
 
@@ -24,7 +25,7 @@ use super::{LoopShape, KEY_POINTS};
 use crate::pattern::Stitch;
 
 /// Signed normal-offset coefficients of the six key points, in scene units, each in
-/// `[-diameter, diameter]`. `lambda_i = x[i] * sign_i`, where `sign_i` is the crossing side of
+/// `[-1.5, 1.5]` diameters. `lambda_i = x[i] * sign_i`, where `sign_i` is the crossing side of
 /// key point `i` given by the model above (so for knit-only fabric `x` is the lambdas
 /// themselves, and a purl stitch mirrors them).
 #[derive(Debug, Clone, PartialEq)]

@@ -137,7 +137,7 @@ def test_forced_internal_error_in_blender(
 
 
 def test_a_yarn_too_thick_for_its_stitch_is_a_warning(api: ModuleType, addon: ModuleType) -> None:
-    # The default yarn (a fifth of a stitch wide) clears; one 0.6 of a stitch wide still fits
+    # The default yarn (a quarter of a stitch wide) clears; one 0.6 of a stitch wide still fits
     # in a stitch (it is not refused) but its loops overlap: the user is warned, with the figure.
     source = nurbs_patch()
     thin, summary = _knit_ok(api, addon, source)

@@ -57,8 +57,8 @@ def test_mesh_surface_and_gauge() -> None:
     r = knitwear.knit(surface, knitwear.Pattern.preset("stockinette"), gauge=(20, 28))
     # 10 cm at 20 stitches and 28 rows per 10 cm.
     assert (r.stats["wales"], r.stats["courses"]) == (20, 28)
-    # Default yarn: a fifth of a stitch wide.
-    assert 2 * r.yarn_radius == pytest.approx(0.2 * r.stats["stitch_width"], rel=1e-4)
+    # Default yarn: a quarter of a stitch wide.
+    assert 2 * r.yarn_radius == pytest.approx(0.25 * r.stats["stitch_width"], rel=1e-4)
 
 
 def test_triangle_index_dtypes() -> None:
