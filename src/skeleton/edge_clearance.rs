@@ -36,7 +36,7 @@ use glam::{Vec2, Vec3};
 
 use super::crossings::{edge_in_front, intersect};
 use super::curvature::{clamp_offsets, stitch_curvature_radii};
-use super::stitch_shape::stitch_key_points;
+use super::stitch_shape::{landing, stitch_key_points};
 use super::{CardinalSpline, NormalOffsets, SplineSampling, YarnPiece, KEY_POINTS};
 use crate::lattice::Lattice;
 use crate::pattern::StitchPattern;
@@ -54,8 +54,9 @@ const SWEEPS: usize = 32;
 const SMOOTHING: usize = 2;
 /// Points measured per segment of the edge's polyline.
 const SUBDIVISIONS: usize = 4;
-/// Fabric samples per loop to measure against: finer than the knit's default, so that the
-/// gap is measured near its narrowest.
+/// Fabric points per loop to measure against, at least: the knit's own samples and points
+/// along the chords between them, so that the gap is measured near its narrowest on the
+/// polyline the knit draws.
 const FABRIC_SAMPLES_PER_LOOP: usize = 32;
 /// How many columns a fabric loop can lean across (a 4/4 cable leans four; twisted
 /// decreases further), beyond which its yarn cannot pass an edge stitch.
@@ -238,6 +239,8 @@ struct FabricNear {
     first: isize,
     /// Each stitch's samples in yarn order, for where the edge crosses it.
     lines: Vec<Vec<Vec3>>,
+    /// The spline parameter between two samples of each line.
+    steps: Vec<f32>,
     /// How far out of the surface the fabric's yarn here stands, on either side (the
     /// largest |lambda| of its samples).
     thickness: f32,
@@ -285,6 +288,18 @@ impl FabricNear {
         let mut columns = vec![Vec::new(); (last - first + 2 * REACH) as usize];
         let first_column = first - REACH;
         let mut lines = Vec::new();
+        let mut steps = Vec::new();
+        // Each course's samples-per-loop multiple, as the knit samples it
+        // ([`super::sampling_density`]).
+        let course_density: Vec<usize> = (0..lattice.courses)
+            .map(|c| {
+                let lean = (0..lattice.wales)
+                    .map(|w| landing(lattice, pattern, c, w).abs_diff(w as isize))
+                    .max()
+                    .unwrap_or(0);
+                super::sampling_density::density(lean)
+            })
+            .collect();
         for x in (first..last).filter(|&x| on_fabric(x)) {
             for course in courses.clone() {
                 // The stitch between its neighbours, so that the spline's tangents at its
@@ -305,10 +320,25 @@ impl FabricNear {
                     period: Vec3::ZERO,
                 };
                 let start = if before { KEY_POINTS as f32 } else { 0.0 };
-                let mut line = Vec::with_capacity(FABRIC_SAMPLES_PER_LOOP + 1);
-                for j in 0..=FABRIC_SAMPLES_PER_LOOP {
-                    let t = start + (j * KEY_POINTS) as f32 / FABRIC_SAMPLES_PER_LOOP as f32;
-                    let p = spline.eval(t);
+                // The fabric as the knit draws it: the chords between its output samples
+                // (which cut inside the spline where its depth turns fast), each measured
+                // at several points.
+                let chords = sampling.samples_per_loop.max(1) * course_density[course];
+                let per_chord = FABRIC_SAMPLES_PER_LOOP.div_ceil(chords).max(1);
+                let per_loop = chords * per_chord;
+                let corner =
+                    |i: usize| spline.eval(start + (i * KEY_POINTS) as f32 / chords as f32);
+                let mut line = Vec::with_capacity(per_loop + 1);
+                let mut from = corner(0);
+                for j in 0..=per_loop {
+                    let t = start + (j * KEY_POINTS) as f32 / per_loop as f32;
+                    let (i, k) = (j / per_chord, j % per_chord);
+                    let p = if k == 0 {
+                        from = corner(i);
+                        from
+                    } else {
+                        from.lerp(corner(i + 1), k as f32 / per_chord as f32)
+                    };
                     line.push(p);
                     let c = (p.x / lattice.tile.x).floor() as isize - first_column;
                     if let Some(column) = usize::try_from(c).ok().and_then(|c| columns.get_mut(c)) {
@@ -323,6 +353,7 @@ impl FabricNear {
                     }
                 }
                 lines.push(line);
+                steps.push(KEY_POINTS as f32 / per_loop as f32);
             }
         }
         let (metrics, radii) = (0..piece.stitches)
@@ -340,6 +371,7 @@ impl FabricNear {
             first: first_column,
             thickness: lines.iter().flatten().fold(0.0, |m, p| m.max(p.z.abs())),
             lines,
+            steps,
             width: lattice.tile.x,
             metrics,
             radii,
@@ -398,9 +430,7 @@ impl FabricNear {
                 let Some((s, r, ez, fz, _)) = intersect(a, b, f0, f1) else {
                     continue;
                 };
-                let ft = f.t
-                    + (index as f32 - f.index as f32 + r) * KEY_POINTS as f32
-                        / FABRIC_SAMPLES_PER_LOOP as f32;
+                let ft = f.t + (index as f32 - f.index as f32 + r) * self.steps[f.line];
                 let at = FabricSample { t: ft, ..*f };
                 let above = front(ta + s * (tb - ta), &at).unwrap_or(ez >= fz);
                 out[f.line].push((a.lerp(b, s).truncate(), above));
