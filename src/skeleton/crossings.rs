@@ -615,7 +615,9 @@ pub(super) fn edge_in_front(
 ///   is knitted, in front when purled: the next loop is pulled through it (the chain).
 fn at_edge(lattice: &Lattice, pattern: &StitchPattern, a: &Seg, b: &Seg) -> Option<(Rule, bool)> {
     let wales = lattice.wales;
-    let knit = |course: usize, wale: usize| pattern.stitch(course, wale % wales).face == Face::Knit;
+    let knit = |course: usize, wale: usize| {
+        super::edges::worked_face(lattice, pattern, course, wale % wales) == Face::Knit
+    };
     let is_leg = |s: &Seg| matches!(s.part, Part::LeftLeg | Part::RightLeg);
     match (a.edge, b.edge) {
         (Some(Edge::BindOff), Some(Edge::BindOff)) if a.piece == b.piece => {
@@ -646,15 +648,21 @@ fn edge_and_fabric(
 ) -> Option<(Rule, bool)> {
     let wales = lattice.wales;
     let cell = |course: usize, wale: usize| pattern.stitch(course, wale % wales);
+    // A bind-off works every stitch of the row it stands for, its slips too, with the face
+    // the edge gives them ([`super::edges::worked_face`]).
+    let face = |course: usize, wale: usize| match e.edge {
+        Some(Edge::BindOff) => super::edges::worked_face(lattice, pattern, course, wale % wales),
+        _ => cell(course, wale).face,
+    };
     // The interlock's rule for the side of upper yarn `upper` against a loop whose puller
     // is `p`: the puller's own legs on its face side, the sinkers of its course on the other,
     // any other loop of its course on the face side.
     let upper_front = |upper: &Seg, p: (usize, usize)| {
-        let knit = cell(p.0, p.1).face == Face::Knit;
+        let knit = face(p.0, p.1) == Face::Knit;
         if upper.part == Part::Sinker {
             !knit
         } else if upper.wale == p.1 {
-            cell(p.0, upper.wale).face == Face::Knit
+            face(p.0, upper.wale) == Face::Knit
         } else {
             knit
         }

@@ -19,6 +19,10 @@
 //! - **Room.** Each point of the edge's polyline (four a segment) keeps [`CLEARANCE`] from
 //!   every fabric sample near it, or where yarns on both sides leave less room, as much as
 //!   there is (the point then sits as far from both as it can).
+//! - **Chain.** A bind-off loop's head keeps a diameter from the next loop's left leg where
+//!   they cross, on the chain's side: both move. Without it, a sinker pushed back past the
+//!   leg tops of linen stitch's last row dragged the next leg back through the head it holds
+//!   (0.004 diameters apart).
 //! - **Moves.** A projected Jacobi iteration meets those bounds, relaxing the moves along
 //!   the yarn after each sweep so that the edge bends rather than kinks. They take it no
 //!   further out of the surface than the fabric's own yarn there: an edge is no thicker
@@ -36,6 +40,7 @@ use glam::{Vec2, Vec3};
 
 use super::crossings::{edge_in_front, intersect};
 use super::curvature::{clamp_offsets, stitch_curvature_radii};
+use super::edges::Edge;
 use super::stitch_shape::{landing, stitch_key_points};
 use super::{CardinalSpline, NormalOffsets, SplineSampling, YarnPiece, KEY_POINTS};
 use crate::lattice::Lattice;
@@ -121,7 +126,8 @@ pub fn keep_clear(
             &mut constraints,
         );
     }
-    if constraints.is_empty() {
+    let chain = chain_crossings(lattice, pattern, piece, t, samples);
+    if constraints.is_empty() && chain.is_empty() {
         return;
     }
     // Projected Jacobi iteration on the moves (lambda only: the gaps across, in (u, v), stay
@@ -146,6 +152,25 @@ pub fn keep_clear(
                     if w > 0.0 {
                         asked[i].0 += k * w;
                         asked[i].1 += 1;
+                    }
+                }
+            }
+        }
+        // The chain's own crossings: both yarns are the edge's, so both give way.
+        for c in &chain {
+            let z = |(a, b, s): (usize, usize, f32)| {
+                (1.0 - s) * (samples[a].z + moves[a]) + s * (samples[b].z + moves[b])
+            };
+            let short = clearance - c.side * (z(c.head) - z(c.leg));
+            if short > 0.0 {
+                for ((a, b, s), sign) in [(c.head, c.side), (c.leg, -c.side)] {
+                    let (wa, wb) = (1.0 - s, s);
+                    let k = 0.5 * sign * short / (wa * wa + wb * wb);
+                    for (i, w) in [(a, wa), (b, wb)] {
+                        if w > 0.0 {
+                            asked[i].0 += k * w;
+                            asked[i].1 += 1;
+                        }
                     }
                 }
             }
@@ -175,6 +200,83 @@ pub fn keep_clear(
         q.z = (q.z + m).clamp(-out, out);
         clamp_offsets(std::slice::from_mut(q), fabric.radii[stitch_of(j)]);
     }
+}
+
+/// Where a bind-off loop's head crosses the next loop's left leg (the chain), and the side
+/// the head keeps: the points a fraction of the way along the segments between two samples
+/// (first sample, second, fraction) of the head and of the leg.
+#[derive(Debug, Clone, Copy)]
+struct ChainCrossing {
+    head: (usize, usize, f32),
+    leg: (usize, usize, f32),
+    /// +1: the head in front of the leg (the next loop purled), -1 behind (knitted).
+    side: f32,
+}
+
+/// The chain crossings of the bind-off `piece` (none for a cast-on): its samples `samples`
+/// at spline parameters `t`, before any move. The edge keeps them a diameter apart on the
+/// side [`super::crossings`] gives them while it moves clear of the fabric: a move that
+/// spreads along the yarn from a sinker pushed back must not drag the next loop's leg through
+/// the head it holds.
+fn chain_crossings(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    piece: &YarnPiece,
+    t: &[f32],
+    samples: &[Vec3],
+) -> Vec<ChainCrossing> {
+    let mut out = Vec::new();
+    if piece.edge != Some(Edge::BindOff) || piece.stitches < 2 {
+        return out;
+    }
+    let n = samples.len();
+    let k = KEY_POINTS as f32;
+    let period = lattice.tile.x * lattice.wales as f32;
+    let segments = if piece.closed { n } else { n - 1 };
+    // Each segment, with its stitch and its parameter within that stitch (at its start).
+    let seg = |j: usize| {
+        let next = (j + 1) % n;
+        let mut b = samples[next];
+        if next == 0 {
+            b.x += period;
+        }
+        let stitch = ((t[j] / k) as usize).min(piece.stitches - 1);
+        (samples[j], b, stitch, t[j] - stitch as f32 * k, next)
+    };
+    let heads: Vec<usize> = (0..segments)
+        .filter(|&j| (2.0..4.0).contains(&seg(j).3))
+        .collect();
+    let legs: Vec<usize> = (0..segments)
+        .filter(|&j| (0.5..2.5).contains(&seg(j).3))
+        .collect();
+    for &h in &heads {
+        let (h0, h1, stitch, _, h_next) = seg(h);
+        let following = stitch + 1;
+        let wraps = following == piece.stitches;
+        if wraps && !piece.closed {
+            continue;
+        }
+        let following = following % piece.stitches;
+        // The next loop's face, as the chain's rule reads it ([`super::crossings`]).
+        let wale = (piece.first_wale + following) % lattice.wales;
+        let knit = super::edges::worked_face(lattice, pattern, piece.course + 1, wale)
+            == crate::pattern::Face::Knit;
+        for &l in legs.iter().filter(|&&l| seg(l).2 == following) {
+            let (mut l0, mut l1, _, _, l_next) = seg(l);
+            if wraps {
+                l0.x += period;
+                l1.x += period;
+            }
+            if let Some((s, r, _, _, _)) = intersect(h0, h1, l0, l1) {
+                out.push(ChainCrossing {
+                    head: (h, h_next, s),
+                    leg: (l, l_next, r),
+                    side: if knit { -1.0 } else { 1.0 },
+                });
+            }
+        }
+    }
+    out
 }
 
 /// That the point a fraction `s` of the way from sample `a` to sample `b` of an edge stays

@@ -12,7 +12,9 @@
 //!   the first course. The strand passes the first course's sinkers on the interlock's
 //!   side, a yarn diameter clear.
 //! - **Bind-off**, over every stitch with no stitch above it, worked as the pattern's next
-//!   row (knit over the stitches the next row knits, purl over the purls), so the last
+//!   row (knit over the stitches the next row knits, purl over the purls; a stitch that row
+//!   would slip is worked like its nearest worked neighbour, as a knitter binds off linen
+//!   stitch in one face, so the chain does not swap sides between two loops), so the last
 //!   course's heads sit exactly as the tuned offsets put them. Each bind-off loop is pulled
 //!   through the loop below it like any course, then lies over to the right, its head
 //!   behind (for a knit) the left leg of the next bind-off loop: the next loop is pulled
@@ -31,7 +33,7 @@ use glam::{Vec2, Vec3};
 use super::stitch_shape::{landing, stitch_key_points, tile_at};
 use super::{NormalOffsets, YarnPiece, KEY_POINTS};
 use crate::lattice::Lattice;
-use crate::pattern::{Form, Stitch, StitchPattern};
+use crate::pattern::{Face, Form, Stitch, StitchPattern};
 use crate::surface::{Surface, SurfacePoint};
 
 /// Where a point of an edge at (u, v) lies: on the surface, or past an open v end of the
@@ -152,8 +154,41 @@ pub fn edge_key_points(
     out
 }
 
+/// The face a stitch of row `course` at wale `w` (in the domain) is worked with when the
+/// row is worked plain (a cast-on's first row, a bind-off): its own, or for a slipped stitch,
+/// which makes no loop of its own to show a face, that of the nearest stitch of the row that
+/// is worked (left first), so that a bind-off over linen stitch's slips is one chain of one
+/// face and does not swap sides between every pair of loops; knit where the whole row slips.
+pub(super) fn worked_face(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    course: usize,
+    w: usize,
+) -> Face {
+    let wales = lattice.wales;
+    let worked = |x: usize| {
+        let s = pattern.stitch(course, x);
+        (!matches!(s.form, Form::Slip { .. })).then_some(s.face)
+    };
+    if let Some(face) = worked(w) {
+        return face;
+    }
+    for step in 1..wales {
+        let (left, right) = if lattice.cyclic_u {
+            (Some((w + wales - step) % wales), Some((w + step) % wales))
+        } else {
+            (w.checked_sub(step), (w + step < wales).then_some(w + step))
+        };
+        if let Some(face) = left.and_then(worked).or_else(|| right.and_then(worked)) {
+            return face;
+        }
+    }
+    Face::Knit
+}
+
 /// The stitch of row `course` at `wale` (any wale: the pattern repeats), as a plain loop of
-/// its face, and its left neighbour (itself at an open u edge).
+/// the face it is worked with ([`worked_face`]), and its left neighbour (itself at an open u
+/// edge).
 fn plain_and_left(
     lattice: &Lattice,
     pattern: &StitchPattern,
@@ -162,12 +197,12 @@ fn plain_and_left(
 ) -> (Stitch, Stitch) {
     let wales = lattice.wales;
     let w = wale % wales;
-    let plain = |s: Stitch| Stitch::plain(s.face);
-    let this = plain(pattern.stitch(course, w));
+    let plain = |x: usize| Stitch::plain(worked_face(lattice, pattern, course, x));
+    let this = plain(w);
     let left = if w > 0 {
-        plain(pattern.stitch(course, w - 1))
+        plain(w - 1)
     } else if lattice.cyclic_u {
-        plain(pattern.stitch(course, wales - 1))
+        plain(wales - 1)
     } else {
         this
     };
