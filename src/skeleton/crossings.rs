@@ -37,7 +37,7 @@
 use glam::{Vec2, Vec3};
 
 use super::edges::Edge;
-use super::stitch_shape::{knitted_form, landing};
+use super::stitch_shape::{group_on_fabric, knitted_form, landing};
 use super::{YarnPiece, KEY_POINTS};
 use crate::lattice::Lattice;
 use crate::pattern::{Face, Form, StitchPattern};
@@ -711,7 +711,16 @@ fn expected(lattice: &Lattice, pattern: &StitchPattern, a: &Seg, b: &Seg) -> Opt
     if a.edge.is_some() || b.edge.is_some() {
         return at_edge(lattice, pattern, a, b);
     }
-    let cell = |s: &Seg| pattern.stitch(s.course, s.wale);
+    // The stitch as knitted: a loop whose crossing or decrease the edge cuts is knitted
+    // straight, in no layer, as its key points are (`stitch_shape::stitch_key_points`).
+    let cell = |s: &Seg| {
+        let mut c = pattern.stitch(s.course, s.wale);
+        if !group_on_fabric(lattice, pattern, s.course, s.wale) {
+            c.land_offset = 0;
+            c.land_layer = 0;
+        }
+        c
+    };
     let (ca, cb) = (cell(a), cell(b));
     let slip = |c: crate::pattern::Stitch| match c.form {
         Form::Slip { yarn_front } => Some(yarn_front),
