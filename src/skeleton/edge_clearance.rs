@@ -22,7 +22,9 @@
 //! - **Chain.** A bind-off loop's head keeps a diameter from the next loop's left leg where
 //!   they cross, on the chain's side: both move. Without it, a sinker pushed back past the
 //!   leg tops of linen stitch's last row dragged the next leg back through the head it holds
-//!   (0.004 diameters apart).
+//!   (0.004 diameters apart). The yarn from the left leg top to the head keeps what a
+//!   diameter leaves in depth where it passes near the next leg's top without crossing it
+//!   (stockinette's bind-off sampled twice as densely: 0.949 diameters, 0.970 kept).
 //! - **Moves.** A projected Jacobi iteration meets those bounds, relaxing the moves along
 //!   the yarn after each sweep so that the edge bends rather than kinks. They take it no
 //!   further out of the surface than the fabric's own yarn there: an edge is no thicker
@@ -126,7 +128,15 @@ pub fn keep_clear(
             &mut constraints,
         );
     }
-    let chain = chain_crossings(lattice, pattern, piece, t, samples);
+    let chain = chain_crossings(
+        lattice,
+        pattern,
+        piece,
+        t,
+        samples,
+        &fabric.metrics,
+        clearance,
+    );
     if constraints.is_empty() && chain.is_empty() {
         return;
     }
@@ -161,7 +171,7 @@ pub fn keep_clear(
             let z = |(a, b, s): (usize, usize, f32)| {
                 (1.0 - s) * (samples[a].z + moves[a]) + s * (samples[b].z + moves[b])
             };
-            let short = clearance - c.side * (z(c.head) - z(c.leg));
+            let short = c.room - c.side * (z(c.head) - z(c.leg));
             if short > 0.0 {
                 for ((a, b, s), sign) in [(c.head, c.side), (c.leg, -c.side)] {
                     let (wa, wb) = (1.0 - s, s);
@@ -211,6 +221,9 @@ struct ChainCrossing {
     leg: (usize, usize, f32),
     /// +1: the head in front of the leg (the next loop purled), -1 behind (knitted).
     side: f32,
+    /// The depth they keep between them there (scene units): the clearance where they cross
+    /// in (u, v), what it leaves where they pass nearer than it without crossing.
+    room: f32,
 }
 
 /// The chain crossings of the bind-off `piece` (none for a cast-on): its samples `samples`
@@ -224,6 +237,8 @@ fn chain_crossings(
     piece: &YarnPiece,
     t: &[f32],
     samples: &[Vec3],
+    metrics: &[Metric],
+    clearance: f32,
 ) -> Vec<ChainCrossing> {
     let mut out = Vec::new();
     if piece.edge != Some(Edge::BindOff) || piece.stitches < 2 {
@@ -267,11 +282,24 @@ fn chain_crossings(
                 l0.x += period;
                 l1.x += period;
             }
-            if let Some((s, r, _, _, _)) = intersect(h0, h1, l0, l1) {
+            // A crossing keeps the clearance in depth; a pass nearer than it in (u, v), the
+            // rest of it.
+            let metric = &metrics[stitch];
+            let near = || {
+                let (s, r) = metric.nearest(h0, h1, l0, l1);
+                let planar = metric.length((h0.lerp(h1, s) - l0.lerp(l1, r)).truncate());
+                (planar < clearance)
+                    .then(|| (s, r, (clearance * clearance - planar * planar).sqrt()))
+            };
+            if let Some((s, r, room)) = intersect(h0, h1, l0, l1)
+                .map(|(s, r, ..)| (s, r, clearance))
+                .or_else(near)
+            {
                 out.push(ChainCrossing {
                     head: (h, h_next, s),
                     leg: (l, l_next, r),
                     side: if knit { -1.0 } else { 1.0 },
+                    room,
                 });
             }
         }
@@ -329,7 +357,42 @@ impl Metric {
     }
 
     fn length(&self, step: Vec2) -> f32 {
-        (step.x * self.du + step.y * self.dv).length()
+        self.map(step).length()
+    }
+
+    /// A step in (u, v) as a vector in the tangent plane (scene units).
+    fn map(&self, step: Vec2) -> Vec3 {
+        step.x * self.du + step.y * self.dv
+    }
+
+    /// Where segments `a0 a1` and `b0 b1`, in (u, v, lambda), come nearest in (u, v) by this
+    /// metric: the fraction along each. For segments that do not cross, whose nearest
+    /// points then include an end of one.
+    fn nearest(&self, a0: Vec3, a1: Vec3, b0: Vec3, b1: Vec3) -> (f32, f32) {
+        let r = self.map((a1 - a0).truncate());
+        let (q, s) = (
+            self.map((b0 - a0).truncate()),
+            self.map((b1 - b0).truncate()),
+        );
+        // The fraction along `from + t dir` nearest `x`.
+        let along = |from: Vec3, dir: Vec3, x: Vec3| {
+            let l = dir.length_squared();
+            if l > 0.0 {
+                ((x - from).dot(dir) / l).clamp(0.0, 1.0)
+            } else {
+                0.0
+            }
+        };
+        let gap = |(t, u): (f32, f32)| (t * r).distance_squared(q + u * s);
+        [
+            (0.0, along(q, s, Vec3::ZERO)),
+            (1.0, along(q, s, r)),
+            (along(Vec3::ZERO, r, q), 0.0),
+            (along(Vec3::ZERO, r, q + s), 1.0),
+        ]
+        .into_iter()
+        .min_by(|x, y| gap(*x).total_cmp(&gap(*y)))
+        .unwrap_or((0.0, 0.0))
     }
 }
 

@@ -143,7 +143,6 @@ impl YarnSkeleton {
         colors: Option<&ColorPattern>,
     ) -> Vec<YarnPiece> {
         let mut pieces = yarn_pieces(&self.lattice, built);
-        sampling_density(&mut pieces, &self.lattice, pattern);
         pieces.extend(bobbles::bobble_pieces(&self.lattice, built, pattern));
         if let Some(colors) = colors {
             pieces.extend(floats::float_pieces(&self.lattice, built, colors));
@@ -151,6 +150,7 @@ impl YarnSkeleton {
         if !self.live_loops {
             pieces.extend(edges::edge_pieces(&self.lattice, fabric, built));
         }
+        sampling_density(&mut pieces, &self.lattice, pattern);
         pieces
     }
 
