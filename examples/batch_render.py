@@ -18,7 +18,8 @@ repository and its venv at the same path. Nothing here schedules.
   renames it over the output only after the script succeeded (an atomic rename), and a job that
   finds its output already there writes nothing. Dask reruns the jobs of a worker that dies; a
   rerun of a job whose rename had happened finds the output and stops. Each rename is logged,
-  a line per output, in `batch-ledger.jsonl` beside the outputs.
+  a line per output, in `batch-ledger.jsonl` beside the outputs. The attempt files of killed
+  renders are removed when the batch ends (and when it starts, after a crash).
 - **Deterministic.** The same script and arguments give the same image on any worker (the
   core's output does not depend on the machine or the thread count): a farm's frame equals the
   frame rendered alone.
@@ -119,6 +120,24 @@ def run_job(job: Job, python: str) -> dict[str, object]:
     return {"output": job.output, "rendered": True, "seconds": seconds}
 
 
+def _attempt_files(jobs: list[Job]) -> list[Path]:
+    """The attempt files (`.<stem>.<id>.partial<suffix>`) of `jobs`' outputs on disk."""
+    found = []
+    for job in jobs:
+        output = Path(job.output)
+        if output.parent.is_dir():
+            found += output.parent.glob(f".{output.stem}.*.partial{output.suffix}")
+    return found
+
+
+def _sweep_attempts(jobs: list[Job]) -> None:
+    """Remove the attempt files that killed renders left (a worker killed mid-write leaves
+    its attempt's file; its job was rendered again under another name). Called only while no
+    job of the batch runs: before it starts and after every job has finished."""
+    for path in _attempt_files(jobs):
+        path.unlink(missing_ok=True)
+
+
 def run_batch(
     jobs: list[Job],
     *,
@@ -135,6 +154,7 @@ def run_batch(
     if __name__ != "__main__":  # (__main__'s functions travel by value anyway)
         cloudpickle.register_pickle_by_value(sys.modules[__name__])
     todo = [j for j in jobs if not Path(j.output).exists()]
+    _sweep_attempts(todo)
     progress(f"batch: {len(jobs)} jobs, {len(jobs) - len(todo)} already done")
     t0 = time.perf_counter()
     cluster = None
@@ -160,6 +180,8 @@ def run_batch(
         client.close()
         if cluster is not None:
             cluster.close()
+    # Every job has finished (as_completed ran through them all without an error).
+    _sweep_attempts(todo)
     wall = time.perf_counter() - t0
     return {"jobs": len(jobs), "rendered": rendered, "skipped": len(jobs) - len(todo),
             "seconds": wall}

@@ -125,9 +125,12 @@ def test_a_killed_worker_reruns_and_every_image_matches_one_process(
     for name in names:
         assert (farm / name).read_bytes() == (alone / name).read_bytes(), name
 
-    # Resumable: the batch again renders nothing; an image removed is rendered again, alone.
+    # Resumable: the batch again renders nothing; an image removed is rendered again, alone,
+    # and the half-written attempt a crash left for it is cleared away.
     (farm / "garter_sea.png").unlink()
+    (farm / ".garter_sea.0123abcd.partial.png").write_bytes(b"\x89PNG half")
     again = _finish(_batch(farm, "--workers", "1"))
     assert "1 rendered, 5 already there" in again
     assert (farm / "garter_sea.png").read_bytes() == (alone / "garter_sea.png").read_bytes()
     assert sorted(_ledger(farm)) == sorted([*names, "garter_sea.png"])
+    assert not list(farm.glob(".*.partial.png")), "a crashed attempt's file is left"
