@@ -1,15 +1,17 @@
 """Charts of where knitting on a surface breaks (issue 4): sweeps the four parameters that break
 knit-on-surface methods and plots the yarn clearance (docs/design.md section 7) against each,
 with the places where the core's safeguards engage (offsets clamped to the curvature, stitches
-skipped, requests refused).
+skipped, requests refused), the interlock and the optical cover.
 
     PYTHONPATH=build/site .venv/bin/python scripts/chart_breakage.py [--out docs/charts]
 
 Core Python API only (no Blender); surfaces are generated with numpy. Every point records the
-clearance min and 1st percentile in yarn diameters, the stitches built, skipped and clamped, and
-the `knitwear.KnitError` subclass if the knit was refused. Charts are drawn with Pillow.
-
-The core exposes no crossing-order (interlock topology) metric yet, so none is plotted.
+clearance min and 1st percentile in yarn diameters, the stitches built, skipped and clamped, the
+interlock (the fraction of crossings between adjacent courses whose order agrees with the stitch
+as knitted: design.md section 3; 1.0 is a knitted fabric, every crossing decided) and, on the
+flat sweeps, the optical cover (`knitwear.measure_cover`: the fraction of the fabric's middle,
+a stitch in from every edge, hidden by the yarn's tubes seen square-on), and the
+`knitwear.KnitError` subclass if the knit was refused. Charts are drawn with Pillow.
 """
 
 from __future__ import annotations
@@ -29,6 +31,8 @@ from PIL import Image, ImageDraw, ImageFont
 #: Stitch size every sweep is built around: the default gauge (20 x 28 per 10 cm).
 STITCH_W = 0.005
 STITCH_H = 0.1 / 28
+#: The core's automatic yarn radius (`yarn_radius` 0): an eighth of the stitch width.
+DEFAULT_YARN = 0.125
 #: Cheap bundles: clearance is measured on the centrelines, which do not depend on them.
 FAST = {"ring_segments": 3, "threads": 2, "measure_clearance": True}
 PATTERN = "stockinette"
@@ -83,11 +87,19 @@ def stretched_strip(ratio: float, n: int = 20) -> knitwear.MeshSurface:
 # Sweeps
 
 
-def knit_point(x: float, surface: Any, **settings: Any) -> Record:
-    """Knits one sweep point; a refusal is recorded (class name and message), not raised."""
+#: Pixels per side of the cover measure's raster (a stitch is about 20 of them on the sheet).
+COVER_RESOLUTION = 400
+
+
+def knit_point(x: float, surface: Any, cover_bounds: tuple[float, float, float, float] | None
+               = None, **settings: Any) -> Record:
+    """Knits one sweep point; a refusal is recorded (class name and message), not raised.
+    `cover_bounds` (x_min, y_min, x_max, y_max in the surface's space): where to measure the
+    optical cover, on a flat surface in z = 0 seen along z; None: not measured."""
     rec: Record = {
         "x": x, "error": None, "message": "", "clearance_min": None, "clearance_p01": None,
-        "stitches": 0, "stitches_skipped": 0, "stitches_clamped": 0,
+        "stitches": 0, "stitches_skipped": 0, "stitches_clamped": 0, "interlock": None,
+        "cover": None,
     }
     try:
         r = knitwear.knit(surface, knitwear.Pattern.preset(PATTERN), **(FAST | settings))
@@ -98,7 +110,17 @@ def knit_point(x: float, surface: Any, **settings: Any) -> Record:
     for key in ("stitches", "stitches_skipped", "stitches_clamped", "clearance_min",
                 "clearance_p01"):
         rec[key] = s[key]
+    decided, agree = s["interlock"]
+    rec["interlock"] = agree / decided if decided else None
+    if cover_bounds is not None:
+        rec["cover"] = knitwear.measure_cover(r, cover_bounds, COVER_RESOLUTION)
     return rec
+
+
+def middle(width: float, height: float) -> tuple[float, float, float, float]:
+    """The cover rectangle of a `width x height` sheet at the origin: a stitch in from each
+    side and a course in from the top and bottom, where the cast-on and bind-off lie."""
+    return (STITCH_W, STITCH_H, width - STITCH_W, height - STITCH_H)
 
 
 def log_space(lo: float, hi: float, n: int) -> list[float]:
@@ -107,15 +129,17 @@ def log_space(lo: float, hi: float, n: int) -> list[float]:
 
 def sweep_curvature(ratios: Sequence[float], courses: int = 12) -> list[Record]:
     """Cylinders of radius `R = ratio * stitch width`, knitted in the round with the stitch size
-    and yarn pinned (yarn radius 0.1 stitch width): as many wales as fit round (at least one;
-    below R/w = 1/(2 pi) one stitch is wider than the circumference)."""
+    and yarn pinned (the default yarn radius, an eighth of the stitch width): as many wales as
+    fit round (at least one; below R/w = 1/(2 pi) one stitch is wider than the
+    circumference)."""
     out = []
     for ratio in ratios:
         radius = ratio * STITCH_W
         wales = max(1, round(2 * np.pi * radius / STITCH_W))
         surf = cylinder(radius, (courses + 0.7) * STITCH_H, cols=max(48, 8 * wales))
         rec = knit_point(ratio, surf, courses=courses, wales=wales,
-                         stitch_size=(STITCH_W, STITCH_H), yarn_radius=0.1 * STITCH_W)
+                         stitch_size=(STITCH_W, STITCH_H),
+                         yarn_radius=DEFAULT_YARN * STITCH_W)
         rec["wales"] = wales
         out.append(rec)
     return out
@@ -127,7 +151,7 @@ def sweep_kappa(kappas: Sequence[float], seeds: Sequence[int]) -> list[Record]:
     out = []
     for kappa in kappas:
         for seed in seeds:
-            rec = knit_point(kappa, surf, kappa=kappa, seed=seed)
+            rec = knit_point(kappa, surf, middle(0.1, 0.1), kappa=kappa, seed=seed)
             rec["seed"] = seed
             out.append(rec)
     return out
@@ -139,8 +163,12 @@ def sweep_stretch(ratios: Sequence[float], counts: int = 20) -> list[Record]:
     out = []
     for ratio in ratios:
         surf = stretched_strip(ratio)
+        lx, ly = 0.1 * math.sqrt(ratio), 0.1 / math.sqrt(ratio)
         for mode, settings in (("gauge", {}), ("counts", {"courses": counts, "wales": counts})):
-            rec = knit_point(ratio, surf, **settings)
+            # A stitch in from each side: by gauge the default stitch; by counts the stitch
+            # the UVs give, which grows along u and shrinks along v with the stretch.
+            w, h = (STITCH_W, STITCH_H) if mode == "gauge" else (lx / counts, ly / counts)
+            rec = knit_point(ratio, surf, (w, h, lx - w, ly - h), **settings)
             rec["mode"] = mode
             out.append(rec)
     return out
@@ -149,7 +177,7 @@ def sweep_stretch(ratios: Sequence[float], counts: int = 20) -> list[Record]:
 def sweep_yarn(ratios: Sequence[float]) -> list[Record]:
     """A flat sheet at the default gauge, yarn radius `ratio * stitch width`."""
     surf = sheet()
-    return [knit_point(r, surf, yarn_radius=r * STITCH_W) for r in ratios]
+    return [knit_point(r, surf, middle(0.1, 0.1), yarn_radius=r * STITCH_W) for r in ratios]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -159,6 +187,7 @@ WHITE, INK, GRID = (255, 255, 255), (40, 40, 40), (225, 225, 225)
 BLUE, ORANGE, GREEN = (31, 100, 180), (225, 110, 20), (40, 150, 70)
 RED, GREY = (200, 40, 40), (120, 120, 120)
 LIGHT_BLUE, LIGHT_ORANGE = (150, 190, 235), (250, 200, 150)
+PURPLE, TEAL = (130, 60, 170), (20, 150, 140)
 CLAMP_FILL, REFUSE_FILL = (255, 236, 200), (250, 212, 212)
 
 
@@ -195,10 +224,12 @@ def label(v: float) -> str:
 
 
 class Chart:
-    """A ~900 x 600 chart: clearance against the swept value on top, the fraction of stitches
-    a safeguard touched in a strip below, shared x axis."""
+    """A 900 x 720 chart: clearance against the swept value on top, fractions (interlock, cover,
+    stitches a safeguard touched) in a strip below, shared x axis, and the legend in two
+    columns under the x label, where it hides no data."""
 
-    W, H = 900, 600
+    W, H = 900, 720
+    XLABEL_Y = 574
     LEFT, RIGHT, TOP = 80, 24, 52
     MAIN_BOTTOM, STRIP_TOP, STRIP_BOTTOM = 400, 438, 530
 
@@ -228,15 +259,16 @@ class Chart:
         for t in self.x.ticks():
             px = self.x(t)
             d.text((px, self.STRIP_BOTTOM + 6), label(t), fill=INK, font=font(13), anchor="mt")
-        d.text((self.W / 2, self.H - 26), self.xlabel, fill=INK, font=font(15), anchor="mt")
+        d.text((self.W / 2, self.XLABEL_Y), self.xlabel, fill=INK, font=font(15), anchor="mt")
         mid = (self.TOP + self.MAIN_BOTTOM) / 2
         ylab = Image.new("RGBA", (340, 22), (255, 255, 255, 0))
         ImageDraw.Draw(ylab).text((170, 11), "clearance (yarn diameters)", fill=INK,
                                   font=font(15), anchor="mm")
         rot = ylab.rotate(90, expand=True)
         self.img.paste(rot, (4, int(mid - rot.height / 2)), rot)
-        d.text((self.LEFT, self.STRIP_TOP - 9), "lower panel: fraction of stitches a "
-               "safeguard touched (clamped or skipped)", fill=INK, font=font(12), anchor="ls")
+        d.text((self.LEFT, self.STRIP_TOP - 9), "lower panel: fractions: interlock (crossings "
+               "in the knitted order), cover (yarn square-on), stitches a safeguard touched",
+               fill=INK, font=font(12), anchor="ls")
 
     def _clip(self, v: float, ax: Axis) -> float:
         return min(max(v, min(ax.lo, ax.hi)), max(ax.lo, ax.hi))
@@ -335,22 +367,19 @@ class Chart:
         if xs:
             self.legend.append((name, color, marker))
 
-    def save(self, path: Path, legend_at: str = "lower right") -> None:
+    def save(self, path: Path) -> None:
         d, f = self.d, font(13)
         d.rectangle([self.LEFT, self.TOP, self.W - self.RIGHT, self.MAIN_BOTTOM], outline=INK)
         d.rectangle([self.LEFT, self.STRIP_TOP, self.W - self.RIGHT, self.STRIP_BOTTOM],
                     outline=INK)
-        if self.legend:
-            w = max(d.textlength(n, font=f) for n, _, _ in self.legend) + 44
-            h = 20 * len(self.legend) + 8
-            x0 = self.W - self.RIGHT - w - 10 if "right" in legend_at else self.LEFT + 10
-            y0 = self.MAIN_BOTTOM - h - 30 if "lower" in legend_at else self.TOP + 28
-            d.rectangle([x0, y0, x0 + w, y0 + h], fill=WHITE, outline=GREY)
-            for i, (name, color, marker) in enumerate(self.legend):
-                y = y0 + 14 + 20 * i
-                d.line([(x0 + 6, y), (x0 + 28, y)], fill=color, width=3)
-                self._marker((x0 + 17, y), color, marker)
-                d.text((x0 + 36, y), name, fill=INK, font=f, anchor="lm")
+        rows = (len(self.legend) + 1) // 2
+        col = (self.W - self.LEFT - self.RIGHT) / 2
+        for i, (name, color, marker) in enumerate(self.legend):
+            x0 = self.LEFT + col * (i // rows)
+            y = self.XLABEL_Y + 34 + 20 * (i % rows)
+            d.line([(x0 + 6, y), (x0 + 28, y)], fill=color, width=3)
+            self._marker((x0 + 17, y), color, marker)
+            d.text((x0 + 36, y), name, fill=INK, font=f, anchor="lm")
         path.parent.mkdir(parents=True, exist_ok=True)
         self.img.quantize(64).save(path, optimize=True)
 
@@ -406,12 +435,26 @@ def strip_series(c: Chart, good: Sequence[Record], key: str, color: tuple[int, i
     c.series([r["x"] for r in good], fr, color, name, strip=True, marker="^")
 
 
+def fabric_series(c: Chart, xs: Sequence[float], groups: Sequence[Sequence[Record]],
+                  what: str = "") -> None:
+    """Interlock and cover in the lower panel: the worst over each x's records (seeds)."""
+    cover = [min((r["cover"] for r in g if r["cover"] is not None), default=None)
+             for g in groups]
+    if any(v is not None for v in cover):
+        c.series(xs, cover, PURPLE, f"cover{what} (lower panel)", strip=True, marker="s")
+    # Drawn last, so that it shows where the cover reaches 1 too.
+    interlock = [min((r["interlock"] for r in g if r["interlock"] is not None), default=None)
+                 for g in groups]
+    c.series(xs, interlock, TEAL, f"interlock{what} (lower panel)", strip=True, marker="o")
+
+
 def chart_curvature(recs: Sequence[Record], path: Path) -> None:
     good = ok(recs)
     xs = [r["x"] for r in recs]
     c = Chart("Cylinder knitted in the round: clearance vs curvature radius",
               "cylinder radius / stitch width  (log; stitch size and yarn pinned, "
-              "yarn radius 0.1 stitch width)", (min(xs), max(xs)), True, ylim_for(recs))
+              "the default yarn radius 0.125 stitch width)", (min(xs), max(xs)), True,
+              ylim_for(recs))
     end = edge(good, lambda r: r["stitches_clamped"] > 0, True)
     if end is not None and good[0]["stitches_clamped"]:
         c.region(min(xs), end, CLAMP_FILL, "offsets clamped")
@@ -420,6 +463,7 @@ def chart_curvature(recs: Sequence[Record], path: Path) -> None:
     c.vline(1 / (2 * math.pi), GREY, "1 stitch round")
     clearance_lines(c, good, gentle_first=False)
     strip_series(c, good, "stitches_clamped", RED, "fraction clamped")
+    fabric_series(c, [r["x"] for r in good], [[r] for r in good])
     c.marks([r["x"] for r in recs if r["error"]], 0.05, RED, "refused")
     c.save(path)
 
@@ -450,7 +494,8 @@ def chart_kappa(recs: Sequence[Record], path: Path) -> None:
     c.marks(refused, 0.85, RED, "refused: ParameterError")
     strip_series(c, [by[k][0] for k in allowed], "stitches_clamped", GREY,
                  "skipped or clamped")
-    c.save(path, legend_at="upper left")
+    fabric_series(c, allowed, [by[k] for k in allowed], " (worst seed)")
+    c.save(path)
 
 
 def chart_stretch(recs: Sequence[Record], path: Path) -> None:
@@ -479,7 +524,9 @@ def chart_stretch(recs: Sequence[Record], path: Path) -> None:
     for mode, color in (("gauge", BLUE), ("counts", ORANGE)):
         good = [r for r in ok(recs) if r["mode"] == mode]
         strip_series(c, good, "stitches_skipped", color, f"skipped, {mode}")
-    c.save(path, legend_at="lower left")
+    good = [r for r in ok(recs) if r["mode"] == "gauge"]
+    fabric_series(c, [r["x"] for r in good], [[r] for r in good], ", by gauge")
+    c.save(path)
 
 
 def chart_yarn(recs: Sequence[Record], path: Path) -> None:
@@ -494,11 +541,12 @@ def chart_yarn(recs: Sequence[Record], path: Path) -> None:
         c.region(start, max(xs), REFUSE_FILL, "refused: r > w/2")
     c.redraw_grid()
     acceptance_lines(c)
-    c.vline(0.1, GREY, "default 0.1")
+    c.vline(DEFAULT_YARN, GREY, f"default {DEFAULT_YARN:g}")
     clearance_lines(c, good, gentle_first=True)
     strip_series(c, good, "stitches_clamped", GREY, "skipped or clamped")
+    fabric_series(c, [r["x"] for r in good], [[r] for r in good])
     c.marks(refused, 0.1, RED, "refused: ParameterError")
-    c.save(path, legend_at="upper right")
+    c.save(path)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -515,12 +563,25 @@ def crossing(xs: Sequence[float], ys: Sequence[float], level: float) -> float | 
 
 def summary(name: str, recs: Sequence[Record], gentle_first: bool) -> str:
     good = sorted(ok(recs), key=lambda r: r["x"], reverse=not gentle_first)
-    xs = [r["x"] for r in good]
     parts = [name]
-    for key in ("clearance_min", "clearance_p01"):
+    if good:
+        worst = min(good, key=lambda r: r["clearance_min"])
+        parts.append(f"clearance_min {good[0]['clearance_min']:.3f} at {good[0]['x']:.3g}, "
+                     f"worst {worst['clearance_min']:.3f} at {worst['x']:.3g}")
+        xs = [r["x"] for r in good]
         for level in (1.0, 0.95):
-            x = crossing(xs, [r[key] for r in good], level)
-            parts.append(f"{key} < {level}: {'never' if x is None else f'{x:.3g}'}")
+            ys = [r["clearance_min"] for r in good]
+            if ys[0] < level:
+                parts.append(f"< {level} from the start")
+            else:
+                x = crossing(xs, ys, level)
+                parts.append(f"< {level}: {'never' if x is None else f'{x:.3g}'}")
+    interlock = [r["interlock"] for r in good if r["interlock"] is not None]
+    if interlock:
+        parts.append(f"interlock {min(interlock):.4f}..{max(interlock):.4f}")
+    cover = [r["cover"] for r in good if r["cover"] is not None]
+    if cover:
+        parts.append(f"cover {min(cover):.3f}..{max(cover):.3f}")
     clamped = [r["x"] for r in good if r["stitches_clamped"]]
     skipped = [r["x"] for r in good if r["stitches_skipped"]]
     errors = sorted({(r["x"], r["error"]) for r in recs if r["error"]})
@@ -529,7 +590,7 @@ def summary(name: str, recs: Sequence[Record], gentle_first: bool) -> str:
     if skipped:
         parts.append(f"skips at {min(skipped):.3g}..{max(skipped):.3g}")
     if errors:
-        parts.append(f"refused from {errors[0][0]:.3g} ({errors[0][1]})")
+        parts.append(f"refused at {errors[0][0]:.3g}..{errors[-1][0]:.3g} ({errors[0][1]})")
     return "; ".join(parts)
 
 

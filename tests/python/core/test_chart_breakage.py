@@ -13,7 +13,7 @@ import pytest
 
 SCRIPT = Path(__file__).resolve().parents[3] / "scripts" / "chart_breakage.py"
 FIELDS = {"x", "error", "message", "clearance_min", "clearance_p01", "stitches",
-          "stitches_skipped", "stitches_clamped"}
+          "stitches_skipped", "stitches_clamped", "interlock", "cover"}
 
 
 @pytest.fixture(scope="module")
@@ -39,6 +39,9 @@ def check(recs: list[dict], n: int) -> None:
         if r["error"] is None:
             assert r["stitches"] > 0
             assert 0 < r["clearance_min"] <= r["clearance_p01"]
+            # Every crossing between adjacent courses decided, in the knitted order, at
+            # every point the charts plot: safeguards never buy clearance with the structure.
+            assert r["interlock"] == 1.0, r
 
 
 def test_curvature_clamps_on_a_thin_cylinder(charts: ModuleType) -> None:
@@ -69,10 +72,15 @@ def test_stretch_refuses_fixed_counts_not_the_gauge(charts: ModuleType) -> None:
 
 
 def test_yarn_thicker_than_a_stitch_is_refused(charts: ModuleType) -> None:
-    recs = charts.sweep_yarn([0.1, 0.55])
-    check(recs, 2)
-    assert recs[0]["error"] is None and recs[0]["clearance_min"] > STOCKINETTE_FLOOR
-    assert recs[1]["error"] == "ParameterError"
+    recs = charts.sweep_yarn([0.1, charts.DEFAULT_YARN, 0.55])
+    check(recs, 3)
+    thin, default, thick = recs
+    assert default["error"] is None and default["clearance_min"] > STOCKINETTE_FLOOR
+    # The cover bound for stockinette at the default yarn (0.895 here), and a
+    # thinner yarn hides less of the fabric.
+    assert default["cover"] >= 0.88, default
+    assert thin["cover"] < default["cover"], (thin, default)
+    assert thick["error"] == "ParameterError"
 
 
 def test_charts_are_drawn(charts: ModuleType, tmp_path: Path) -> None:
