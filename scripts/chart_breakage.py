@@ -1,7 +1,8 @@
 """Charts of where knitting on a surface breaks (issue 4): sweeps the four parameters that break
-knit-on-surface methods and plots the yarn clearance (docs/design.md section 7) against each,
-with the places where the core's safeguards engage (offsets clamped to the curvature, stitches
-skipped, requests refused), the interlock and the optical cover.
+knit-on-surface methods, and the centreline's sampling, and plots the yarn clearance
+(docs/design.md section 7) against each, with the places where the core's safeguards engage
+(offsets clamped to the curvature, stitches skipped, requests refused), the interlock and the
+optical cover.
 
     PYTHONPATH=build/site .venv/bin/python scripts/chart_breakage.py [--out docs/charts]
 
@@ -33,6 +34,8 @@ STITCH_W = 0.005
 STITCH_H = 0.1 / 28
 #: The core's automatic yarn radius (`yarn_radius` 0): an eighth of the stitch width.
 DEFAULT_YARN = 0.125
+#: The core's default samples per loop.
+DEFAULT_SAMPLES = 16
 #: Cheap bundles: clearance is measured on the centrelines, which do not depend on them.
 FAST = {"ring_segments": 3, "threads": 2, "measure_clearance": True}
 PATTERN = "stockinette"
@@ -172,6 +175,14 @@ def sweep_stretch(ratios: Sequence[float], counts: int = 20) -> list[Record]:
             rec["mode"] = mode
             out.append(rec)
     return out
+
+
+def sweep_samples(counts: Sequence[int]) -> list[Record]:
+    """A flat sheet at the defaults, `samples_per_loop` samples along the yarn per stitch: the
+    quality knob that shapes the centreline every metric is measured on (the speed-accuracy
+    chart times it; here is what it costs the structure)."""
+    surf = sheet()
+    return [knit_point(n, surf, middle(0.1, 0.1), samples_per_loop=n) for n in counts]
 
 
 def sweep_yarn(ratios: Sequence[float]) -> list[Record]:
@@ -549,6 +560,21 @@ def chart_yarn(recs: Sequence[Record], path: Path) -> None:
     c.save(path)
 
 
+def chart_samples(recs: Sequence[Record], path: Path) -> None:
+    xs = [r["x"] for r in recs]
+    good = ok(recs)
+    c = Chart("Samples per loop on a flat sheet: clearance vs centreline sampling",
+              "samples per loop  (log; default gauge and yarn)", (min(xs), max(xs)), True,
+              ylim_for(recs))
+    c.redraw_grid()
+    acceptance_lines(c)
+    c.vline(DEFAULT_SAMPLES, GREY, f"default {DEFAULT_SAMPLES}")
+    clearance_lines(c, good, gentle_first=False)
+    strip_series(c, good, "stitches_clamped", GREY, "skipped or clamped")
+    fabric_series(c, [r["x"] for r in good], [[r] for r in good])
+    c.save(path)
+
+
 # ---------------------------------------------------------------------------------------------
 
 
@@ -604,6 +630,8 @@ def main() -> None:
         ("kappa", lambda: sweep_kappa([i * 0.0025 for i in range(9)] + [0.021], range(5)),
          chart_kappa, True),
         ("stretch", lambda: sweep_stretch(log_space(1, 100, 13)), chart_stretch, True),
+        ("samples", lambda: sweep_samples([6, 8, 10, 12, 14, 16, 20, 24, 32, 48, 64]),
+         chart_samples, False),
         ("yarn", lambda: sweep_yarn([round(0.05 + 0.025 * i, 3) for i in range(23)]),
          chart_yarn, True),
     ]

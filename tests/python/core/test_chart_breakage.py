@@ -87,3 +87,12 @@ def test_charts_are_drawn(charts: ModuleType, tmp_path: Path) -> None:
     recs = charts.sweep_yarn([0.1, 0.3, 0.55])
     charts.chart_yarn(recs, tmp_path / "yarn.png")
     assert (tmp_path / "yarn.png").stat().st_size > 1000
+
+
+def test_coarse_sampling_costs_clearance_not_the_interlock(charts: ModuleType) -> None:
+    # Chords through 6 samples a loop cut the loops' corners (0.68 diameters); the default
+    # 16 clears the floor. Both keep every crossing in the knitted order (`check`).
+    coarse, default = charts.sweep_samples([6, charts.DEFAULT_SAMPLES])
+    check([coarse, default], 2)
+    assert coarse["clearance_min"] < default["clearance_min"]
+    assert default["clearance_min"] > STOCKINETTE_FLOOR
