@@ -367,27 +367,40 @@ fn rasterise(
     let (d2x, d2y) = (-(y1 - y0) * inv, (x1 - x0) * inv);
     let (sx0, sy0) = (a0 as f32 + 0.5 - x0, b0 as f32 + 0.5 - y0);
     let (d0x, d0y) = (-(d1x + d2x), -(d1y + d2y));
-    let last = (a1 - a0) as f32;
+    let last = (a1 - a0) as i32;
+    // Per edge: the weight's step along the row and its reciprocal (finite where the step
+    // is not 0; a 0 step never uses it).
+    let steps = [d0x, d1x, d2x].map(|q| (q, if q != 0.0 { 1.0 / q } else { 0.0 }));
     for (r, j) in (b0..=b1).enumerate() {
         let sy = sy0 + r as f32;
         // Each weight is p + q * c along the row (c: column from a0): the columns where all
-        // three can be >= 0, rounded outwards (each sample in the span is still tested
-        // exactly below, so the span only skips work).
-        let (mut lo, mut hi) = (0.0f32, last);
-        for (p, q) in [
-            (1.0 + sx0 * d0x + sy * d0y, d0x),
-            (sx0 * d1x + sy * d1y, d1x),
-            (sx0 * d2x + sy * d2y, d2x),
-        ] {
+        // three can be >= 0. The span only skips work (each sample in it is still tested
+        // exactly below), so its ends are rounded a whole column outwards by truncation,
+        // which covers the reciprocal's rounding and needs no libm floor or ceil (a tenth
+        // of the pass's time); an end beyond the row saturates to the row's own end.
+        let (mut lo, mut hi) = (0i32, last);
+        for (p, (q, inv_q)) in [
+            1.0 + sx0 * d0x + sy * d0y,
+            sx0 * d1x + sy * d1y,
+            sx0 * d2x + sy * d2y,
+        ]
+        .into_iter()
+        .zip(steps)
+        {
+            let at = -p * inv_q;
             if q > 0.0 {
-                lo = lo.max((-p / q).floor());
+                if !at.is_nan() {
+                    lo = lo.max((at as i32).saturating_sub(1));
+                }
             } else if q < 0.0 {
-                hi = hi.min((-p / q).ceil());
-            } else if p < 0.0 {
-                hi = -1.0;
+                if !at.is_nan() {
+                    hi = hi.min((at as i32).saturating_add(1));
+                }
+            } else if p < 0.0 || p.is_nan() {
+                hi = -1;
             }
         }
-        if lo.is_nan() || hi.is_nan() || lo > hi {
+        if lo > hi {
             continue;
         }
         // Buffer index of column c: a0 >= ox, so nothing here goes below zero.
