@@ -94,6 +94,10 @@ class KnitOutcome:
     #: Triangles culled as hidden behind other yarn (Cull Hidden Yarn), of those its levels
     #: make.
     triangles_hidden: int
+    #: With Cull Hidden Yarn (on, auto detail, a still source), whether its pass ran: False
+    #: where the knit has fewer full-detail triangles than Cull From (it is then built whole,
+    #: which is quicker); None where it was not asked for.
+    hidden_pass: bool | None
     #: Whether auto detail applied (Detail is Auto and the scene has a camera).
     auto_detail: bool
     #: The material of the knitwear texture the source now wears, where stitches were left
@@ -279,6 +283,7 @@ def detail_settings(
         "cull_back_faces": cull_back,
         "cull_hidden": cull_hidden,
         "hidden_supersampling": int(settings["cull_hidden_samples"]),
+        "cull_hidden_min_triangles": int(settings["cull_hidden_min_triangles"]),
     }
 
 
@@ -401,6 +406,7 @@ def _outcome(
         levels={name: int(stats["levels"][name]) for name in LEVEL_NAMES},
         triangles_full_detail=int(stats["triangles_full_detail"]),
         triangles_hidden=int(stats["triangles_hidden"]),
+        hidden_pass=stats["hidden_pass"],
         auto_detail=bound.levels is not None,
         texture_material=texture_material,
     )

@@ -60,6 +60,13 @@ def _summary(outcome: api.KnitOutcome) -> str:
                 else ")"
             )
         )
+        stored = outcome.object.knitwear
+        if outcome.hidden_pass is False:
+            notes.append(
+                "hidden yarn kept: fewer full-detail triangles than Cull From "
+                f"({stored.cull_hidden_min_triangles:,}), where building them is quicker "
+                "than finding them"
+            )
         if outcome.texture_material:
             notes.append(f"the source wears '{outcome.texture_material}' for the texture")
     if outcome.skipped_stitches:

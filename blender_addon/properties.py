@@ -308,6 +308,9 @@ class KnitSettingsMixin:
     cull_back_faces: BoolProperty(**from_core("cull_back_faces"))
     cull_hidden: BoolProperty(**from_core("cull_hidden"))
     cull_hidden_samples: IntProperty(**from_core("cull_hidden_samples"))
+    cull_hidden_min_triangles: IntProperty(
+        **from_core("cull_hidden_min_triangles", soft_max=20_000_000, step=100_000)
+    )
 
 
 class KnitwearSettings(KnitSettingsMixin, bpy.types.PropertyGroup):

@@ -72,9 +72,10 @@ def _detail(layout: bpy.types.UILayout, settings: bpy.types.AnyType) -> None:
     layout.prop(settings, "frustum_margin")
     layout.prop(settings, "cull_back_faces")
     layout.prop(settings, "cull_hidden")
-    sub = layout.row()
+    sub = layout.column()
     sub.active = settings.cull_hidden
     sub.prop(settings, "cull_hidden_samples")
+    sub.prop(settings, "cull_hidden_min_triangles")
 
 
 _SECTIONS = (

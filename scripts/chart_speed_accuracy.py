@@ -286,8 +286,10 @@ def sweep_points(quick: bool) -> list[tuple[str, str, dict[str, Any]]]:
     pts.append((FLOOR, "seed 2", full | {"seed": 2}))
 
     def auto(k: float) -> dict[str, Any]:
+        # The strip is under the add-on's Cull From, where the pass is skipped; the chart
+        # measures what culling does, so it always runs here.
         return {"detail_mode": "AUTO", "detail_full_px": 12.0 * k, "detail_mid_px": 5.0 * k,
-                "detail_texture_px": 1.0 * k}
+                "detail_texture_px": 1.0 * k, "cull_hidden_min_triangles": 0}
 
     # Auto detail culls the hidden yarn (the add-on's default); x0: every stitch in view at
     # full detail, only the hidden yarn culled.
@@ -297,7 +299,8 @@ def sweep_points(quick: bool) -> list[tuple[str, str, dict[str, Any]]]:
         pts.append(("auto detail, hidden yarn kept", f"x{k:g} all",
                     auto(k) | {"cull_hidden": False}))
     pts.append(("auto detail, no texture level", "no texture",
-                {"detail_mode": "AUTO", "detail_texture_px": 0.0}))
+                {"detail_mode": "AUTO", "detail_texture_px": 0.0,
+                 "cull_hidden_min_triangles": 0}))
     return pts
 
 

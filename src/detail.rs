@@ -132,6 +132,11 @@ pub struct DetailParams {
     /// Visibility samples per pixel side for `cull_hidden` (1..=16). Default: 4 (16 samples a
     /// pixel, as a well anti-aliased render takes).
     pub hidden_supersampling: u32,
+    /// `cull_hidden` runs its pass only where the knit has at least this many triangles at
+    /// [`Level::Full`] (the yarn thick enough in the image for the pass to find hidden; it
+    /// keeps thinner yarn anyway); otherwise the knit is built whole. Pinned seen triangles
+    /// apply whatever the count. Default: 0 (always).
+    pub cull_hidden_min_triangles: u64,
     /// The triangles seen, fixed in advance (with `cull_hidden`): one bit per triangle of the
     /// knit before culling, triangle `i` at bit `i % 8` of byte `i / 8`, as
     /// [`crate::knit::PreparedKnit::seen_triangles`] gives them. An animated knit pins the
@@ -156,6 +161,7 @@ impl Default for DetailParams {
             pinned: None,
             cull_hidden: s::CULL_HIDDEN.default == Some(1.0),
             hidden_supersampling: s::HIDDEN_SUPERSAMPLING.default_usize() as u32,
+            cull_hidden_min_triangles: s::CULL_HIDDEN_MIN_TRIANGLES.default_usize() as u64,
             pinned_seen: None,
         }
     }
@@ -252,6 +258,7 @@ impl DetailParams {
         }
         crate::settings::FRUSTUM_MARGIN.check(self.frustum_margin)?;
         crate::settings::HIDDEN_SUPERSAMPLING.check(self.hidden_supersampling)?;
+        crate::settings::CULL_HIDDEN_MIN_TRIANGLES.check(self.cull_hidden_min_triangles as f64)?;
         let samples = w.max(h) as u64 * u64::from(self.hidden_supersampling);
         if self.cull_hidden && !self.views.is_empty() && samples > MAX_HIDDEN_SAMPLES {
             return Err(KnitError::Parameter(format!(

@@ -202,6 +202,7 @@ class Knit:
         cull_back_faces: bool = False,
         cull_hidden: bool = False,
         hidden_supersampling: int = 4,
+        cull_hidden_min_triangles: int = 0,
         seen_triangles: bytes | None = None,
     ) -> Self: ...
     def build(self, surface: GridSurface | MeshSurface) -> KnitResult:

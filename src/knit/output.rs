@@ -55,6 +55,11 @@ pub struct KnitStats {
     /// Triangles culled as hidden behind other yarn from every view (`cull_hidden`; 0
     /// without). `triangles` are those left.
     pub triangles_hidden: usize,
+    /// With `cull_hidden`, whether the hidden-yarn pass ran (or pinned seen triangles
+    /// applied): false where the knit has fewer full-quality triangles than
+    /// [`crate::detail::DetailParams::cull_hidden_min_triangles`]. `None` without
+    /// `cull_hidden`.
+    pub hidden_pass: Option<bool>,
 }
 
 /// A knit, in flat buffers.

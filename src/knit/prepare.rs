@@ -321,6 +321,15 @@ impl PreparedKnit {
                 )
             })
             .collect();
+        // The triangles at full quality: the yarn thick enough in the image for the
+        // hidden-yarn pass to find hidden (thinner yarn it keeps wherever a renderer's
+        // samples might catch it).
+        let full_triangles: u64 = spans
+            .iter()
+            .zip(&counts)
+            .filter(|(sp, _)| sp.level == Level::Full)
+            .map(|(_, c)| c.triangles as u64)
+            .sum();
         let total = OutputSize {
             vertices: counts.iter().map(|c| c.vertices as u64).sum(),
             triangles: counts.iter().map(|c| c.triangles as u64).sum(),
@@ -379,7 +388,13 @@ impl PreparedKnit {
             first_build: FirstBuild::default(),
         };
         if let Some(d) = p.detail.as_ref().filter(|d| d.cull_hidden) {
-            prepared.cull_hidden(surface, d)?;
+            // The pass is skipped where the knit has too little full-quality yarn for it to
+            // pay (pinned seen triangles are an earlier pass's answer and always apply).
+            let runs = d.pinned_seen.is_some() || full_triangles >= d.cull_hidden_min_triangles;
+            if runs {
+                prepared.cull_hidden(surface, d)?;
+            }
+            prepared.stats.hidden_pass = Some(runs);
         }
         Ok(prepared)
     }

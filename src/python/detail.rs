@@ -178,6 +178,7 @@ pub(super) fn detail_from(
     cull_back_faces: bool,
     cull_hidden: bool,
     hidden_supersampling: i128,
+    cull_hidden_min_triangles: i128,
     seen_triangles: Option<Vec<u8>>,
 ) -> PyResult<Option<DetailParams>> {
     let pinned = stitch_levels.map(pinned_levels).transpose()?;
@@ -217,6 +218,12 @@ pub(super) fn detail_from(
             hidden_supersampling,
             0u32,
             u32::MAX,
+        )?,
+        cull_hidden_min_triangles: super::within(
+            "cull_hidden_min_triangles",
+            cull_hidden_min_triangles,
+            0u64,
+            u64::MAX,
         )?,
         pinned_seen: seen_triangles,
     }))

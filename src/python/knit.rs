@@ -83,6 +83,7 @@ pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResul
     stats.set_item("levels", levels)?;
     stats.set_item("triangles_full_detail", s.triangles_full_detail)?;
     stats.set_item("triangles_hidden", s.triangles_hidden)?;
+    stats.set_item("hidden_pass", s.hidden_pass)?;
     let yarn_radius = out.yarn_radius;
     let normals = if out.normals.is_empty() {
         None
@@ -227,7 +228,8 @@ impl PyKnit {
         kappa=0.0, seed=0, colors=None, color_image=None, color_variation=0.15, threads=None,
         budget_bytes=None, measure_clearance=false, camera=None, stitch_levels=None, detail_px=None,
         mid_quality=None, far_quality=None, frustum_margin=0.1, cull_back_faces=false,
-        cull_hidden=false, hidden_supersampling=4, seen_triangles=None
+        cull_hidden=false, hidden_supersampling=4, cull_hidden_min_triangles=0,
+        seen_triangles=None
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -262,6 +264,7 @@ impl PyKnit {
         cull_back_faces: bool,
         cull_hidden: bool,
         #[pyo3(from_py_with = int_arg)] hidden_supersampling: i128,
+        #[pyo3(from_py_with = int_arg)] cull_hidden_min_triangles: i128,
         #[pyo3(from_py_with = detail::seen_triangles_arg)] seen_triangles: Option<Vec<u8>>,
     ) -> PyResult<Self> {
         let surf = AnySurface::from_py(surface)?;
@@ -296,6 +299,7 @@ impl PyKnit {
             cull_back_faces,
             cull_hidden,
             hidden_supersampling,
+            cull_hidden_min_triangles,
             seen_triangles,
         )?;
         let pattern = pattern.get().inner.clone();

@@ -18,6 +18,11 @@ from PIL import Image
 sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "scripts"))
 from chart_speed_accuracy import ssim as _ssim  # noqa: E402
 
+#: The strip (3,200 stitches) is far under the add-on's Cull From, where the pass is skipped
+#: because building the hidden yarn is quicker than finding it: these tests cull it anyway,
+#: to test the culling (`test_a_small_knit_keeps_its_hidden_yarn` tests the skip).
+STRIP = STRIP | {"cull_hidden_min_triangles": 0}
+
 #: Workbench renders of the strip: one sample a pixel (no anti-aliasing), so the image is
 #: exactly the nearest triangle at each pixel centre. Full HD: at a few hundred pixels the
 #: yarn is about a pixel thick and culling may drop only what lies under solid yarn (see
@@ -292,3 +297,24 @@ def test_culling_does_not_thin_out_a_small_render(api: ModuleType, tmp_path: Pat
         differ = np.abs(full - thin) > 2 / 255
         assert differ.mean() < 0.005, (aa, differ.mean(), full.sum(), thin.sum())
         assert abs(full.sum() - thin.sum()) < 0.01 * full.sum(), (aa, full.sum(), thin.sum())
+
+
+def test_a_small_knit_keeps_its_hidden_yarn(api: ModuleType) -> None:
+    """At the add-on's defaults the strip's full-detail yarn is far under Cull From: the
+    pass, which would cost more than building what it hides, is skipped and said so; the
+    knit is then the whole one. At Cull From 0 the same knit culls."""
+    source = _scene()
+    small = {k: v for k, v in STRIP.items() if k != "cull_hidden_min_triangles"}
+    whole = api.knit(source, cull_hidden=False, **small)
+    assert whole.hidden_pass is None
+    kept = api.knit(source, **small)
+    assert kept.hidden_pass is False and kept.triangles_hidden == 0
+    assert kept.triangles == whole.triangles
+    assert kept.object.knitwear.cull_hidden_min_triangles > kept.triangles_full_detail
+    culled = api.knit(source, **STRIP)
+    assert culled.hidden_pass is True and culled.triangles_hidden > 0
+    # The operator says why nothing was culled.
+    operators = importlib.import_module(api.__name__.rsplit(".", 1)[0] + ".operators")
+    report = operators._summary(kept)
+    assert "hidden yarn kept" in report and "Cull From" in report, report
+    assert "hidden yarn kept" not in operators._summary(culled)

@@ -166,3 +166,35 @@ def test_hidden_yarn_is_culled_with_the_whole_knits_normals_and_can_be_pinned() 
         knitwear.Knit(strip(), pattern, camera=cam, seen_triangles=seen[:-1])
     with pytest.raises(knitwear.ParameterError, match="culls its hidden yarn"):
         knitwear.Knit(strip(), pattern, camera=cam).normals(strip())
+
+
+def test_the_hidden_yarn_pass_is_skipped_under_cull_hidden_min_triangles() -> None:
+    """Under `cull_hidden_min_triangles` full-quality triangles the pass does not run (it
+    would cost more than building what it hides) and the knit is the whole one; pinned seen
+    triangles still apply, whatever the count."""
+    pattern = knitwear.Pattern.preset("stockinette")
+    cam = receding_camera()
+    whole = knitwear.knit(strip(), pattern, camera=cam, seed=3)
+    assert whole.stats["hidden_pass"] is None
+    culled = knitwear.Knit(strip(), pattern, camera=cam, seed=3, cull_hidden=True)
+    assert culled.build(strip()).stats["hidden_pass"] is True
+    full = whole.stats["triangles"]  # at most this many are at full quality
+    skipped = knitwear.Knit(
+        strip(), pattern, camera=cam, seed=3, cull_hidden=True,
+        cull_hidden_min_triangles=full + 1,
+    )
+    result = skipped.build(strip())
+    assert result.stats["hidden_pass"] is False and result.stats["triangles_hidden"] == 0
+    assert skipped.seen_triangles is None and result.normals is None
+    np.testing.assert_array_equal(result.vertices, whole.vertices)
+    np.testing.assert_array_equal(result.triangles, whole.triangles)
+    pinned = knitwear.Knit(
+        strip(), pattern, seed=3, stitch_levels=culled.stitch_levels,
+        seen_triangles=culled.seen_triangles, cull_hidden_min_triangles=full + 1,
+    )
+    again = pinned.build(strip())
+    assert again.stats["hidden_pass"] is True
+    np.testing.assert_array_equal(again.vertices, culled.build(strip()).vertices)
+    with pytest.raises(knitwear.ParameterError, match="cull_hidden_min_triangles"):
+        knitwear.Knit(strip(), pattern, camera=cam, cull_hidden=True,
+                      cull_hidden_min_triangles=-1)

@@ -157,7 +157,8 @@ def test_the_core_refuses_just_outside_the_declared_range(setting: dict[str, Any
         if setting["name"] in {"courses", "wales"}:
             kwargs = {setting["core_keyword"]: value}
         error = (knitwear.ParameterError, OverflowError)
-        if setting["name"] in {"hidden_supersampling", "frustum_margin"}:
+        camera_only = {"hidden_supersampling", "frustum_margin", "cull_hidden_min_triangles"}
+        if setting["name"] in camera_only:
             kwargs |= {"camera": _camera()}
         with pytest.raises(error) as raised:
             knitwear.Knit(_sheet(), pattern, **kwargs)
