@@ -82,9 +82,12 @@ class KnitOutcome:
     #: The smallest distance between yarns the loop shapes reach on a flat patch, in yarn
     #: diameters: below `MIN_CLEARANCE` the yarn is too thick for its stitch and loops overlap.
     flat_clearance: float
-    #: Seconds from start to finished mesh, and inside the core alone.
+    #: Seconds from start to finished mesh; of them, sampling the source (and its camera
+    #: views), inside the core (the hidden-yarn pass included), and the hidden-yarn pass.
     seconds: float
+    sampling_seconds: float
     core_seconds: float
+    hidden_pass_seconds: float
     #: Seconds spent building the Blender mesh from the core's arrays.
     mesh_seconds: float
     #: Stitches at each detail level (`LEVEL_NAMES`); all "full" without auto detail.
@@ -315,9 +318,10 @@ def _core_steps(
     context: bpy.types.Context,
     settings: Mapping[str, Any],
     progress: Progress | None,
-) -> Generator[CoreJob, Any, tuple[sampling.Sampled, Any, Bound, float]]:
+) -> Generator[CoreJob, Any, tuple[sampling.Sampled, Any, Bound, tuple[float, float]]]:
     """Everything that can fail, before any datablock is created: sampling here, then the
-    core's knit as the one `CoreJob`."""
+    core's knit as the one `CoreJob`. Returns the seconds of both: (sampling, core)."""
+    t_sampling = time.perf_counter()
     inputs = core_inputs.core_inputs(source, context, settings, progress)
     sampled, pattern, kwargs, min_samples = (
         inputs.sampled,
@@ -326,6 +330,7 @@ def _core_steps(
         inputs.min_samples,
     )
     detail = detail_settings(source, context, settings, sampled.origin)
+    sampling_seconds = time.perf_counter() - t_sampling
 
     def job() -> tuple[Any, Any, float]:
         t0 = time.perf_counter()
@@ -344,7 +349,7 @@ def _core_steps(
     )
     if progress:
         progress(0.8)
-    return sampled, result, bound, core_seconds
+    return sampled, result, bound, (sampling_seconds, core_seconds)
 
 
 def _store(
@@ -385,8 +390,7 @@ def _outcome(
     obj: bpy.types.Object,
     result: Any,
     t_start: float,
-    core_s: float,
-    mesh_s: float,
+    seconds: tuple[float, float, float],
     bound: Bound,
     texture_material: str | None,
 ) -> KnitOutcome:
@@ -401,8 +405,10 @@ def _outcome(
         clamped_stitches=int(stats.get("stitches_clamped", 0)),
         flat_clearance=float(stats.get("flat_clearance", 0.0)),
         seconds=time.perf_counter() - t_start,
-        core_seconds=core_s,
-        mesh_seconds=mesh_s,
+        sampling_seconds=seconds[0],
+        core_seconds=seconds[1],
+        hidden_pass_seconds=float(stats["hidden_pass_seconds"]),
+        mesh_seconds=seconds[2],
         levels={name: int(stats["levels"][name]) for name in LEVEL_NAMES},
         triangles_full_detail=int(stats["triangles_full_detail"]),
         triangles_hidden=int(stats["triangles_hidden"]),
@@ -442,7 +448,9 @@ def knit_steps(
     context = context or bpy.context
     settings = core_inputs.complete(settings)
     source = core_inputs.check_source(source, "the object")
-    sampled, result, bound, core_s = yield from _core_steps(source, context, settings, progress)
+    sampled, result, bound, (sampling_s, core_s) = yield from _core_steps(
+        source, context, settings, progress
+    )
 
     # Whatever fails from here on (the texture, last, leaves nothing of its own behind)
     # takes the knit's datablocks with it.
@@ -464,7 +472,7 @@ def knit_steps(
     context.scene.render.use_lock_interface = True
     if progress:
         progress(1.0)
-    return _outcome(obj, result, t_start, core_s, mesh_s, bound, textured)
+    return _outcome(obj, result, t_start, (sampling_s, core_s, mesh_s), bound, textured)
 
 
 def knit_object(
@@ -575,7 +583,9 @@ def update_steps(
         raise knitwear.ParameterError(f"'{obj.name}' is not a knit: knit a surface first")
     merged = core_inputs.complete(settings_from(obj) | dict(settings))
     source = core_inputs.check_source(obj.knitwear.source, f"'{obj.name}'")
-    sampled, result, bound, core_s = yield from _core_steps(source, context, merged, progress)
+    sampled, result, bound, (sampling_s, core_s) = yield from _core_steps(
+        source, context, merged, progress
+    )
 
     # What fails from here on puts the knit back as it was: its mesh (from a copy), matrix
     # and stored settings, and removes what the update created.
@@ -596,7 +606,7 @@ def update_steps(
     bpy.data.meshes.remove(before[3])
     if progress:
         progress(1.0)
-    return _outcome(obj, result, t_start, core_s, mesh_s, bound, textured)
+    return _outcome(obj, result, t_start, (sampling_s, core_s, mesh_s), bound, textured)
 
 
 def _put_back(

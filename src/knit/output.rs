@@ -60,6 +60,9 @@ pub struct KnitStats {
     /// [`crate::detail::DetailParams::cull_hidden_min_triangles`]. `None` without
     /// `cull_hidden`.
     pub hidden_pass: Option<bool>,
+    /// Seconds the hidden-yarn pass took (building the whole knit to look at included); 0
+    /// where it did not run.
+    pub hidden_pass_seconds: f64,
 }
 
 /// A knit, in flat buffers.

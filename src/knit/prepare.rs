@@ -392,7 +392,9 @@ impl PreparedKnit {
             // pay (pinned seen triangles are an earlier pass's answer and always apply).
             let runs = d.pinned_seen.is_some() || full_triangles >= d.cull_hidden_min_triangles;
             if runs {
+                let start = std::time::Instant::now();
                 prepared.cull_hidden(surface, d)?;
+                prepared.stats.hidden_pass_seconds = start.elapsed().as_secs_f64();
             }
             prepared.stats.hidden_pass = Some(runs);
         }

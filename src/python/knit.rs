@@ -84,6 +84,7 @@ pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResul
     stats.set_item("triangles_full_detail", s.triangles_full_detail)?;
     stats.set_item("triangles_hidden", s.triangles_hidden)?;
     stats.set_item("hidden_pass", s.hidden_pass)?;
+    stats.set_item("hidden_pass_seconds", s.hidden_pass_seconds)?;
     let yarn_radius = out.yarn_radius;
     let normals = if out.normals.is_empty() {
         None
