@@ -330,6 +330,51 @@ fn repeats_groups_counts_and_spelling() {
         "Row 1 (RS): p2, k12, p2 (18 sts).\nRow 2: k2, p12, k2.",
     ));
     assert!(m.contains("18 sts") && m.contains("16"), "{m}");
+    // Issue 17: a title line in parentheses before the first row is skipped (a chart is
+    // still told from Knitspeak by its first row).
+    let titled = "(Seed stitch)\nRow 1 (RS): *k1, p1; rep from *.\nRow 2: *p1, k1; rep from *.";
+    assert!(knitwear::pattern::looks_like_knitspeak(titled));
+    assert_eq!(
+        chart(titled),
+        chart("Row 1 (RS): *k1, p1; rep from *.\nRow 2: *p1, k1; rep from *.")
+    );
+    // Each row is given once: a second "Row 1" is an error, not the one that wins.
+    let m = pattern_error(StitchPattern::from_knitspeak(
+        "Row 1 (RS): Knit.\nRow 1: Purl.\nRow 2: Purl.",
+    ));
+    assert!(m.contains("row 1 is given twice"), "{m}");
+    // "Repeat rows" that repeats every row is what the chart does; one that leaves set-up
+    // rows out is an error that says so, as is one naming a row not given or saying more
+    // than the reader understands.
+    let four = "Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: *k1, p1; rep from *.\nRow 4: *k1, p1; rep from *.\n";
+    for ok in [
+        "Repeat rows 1-4.",
+        "Rep rows 1-4 for pattern.",
+        "Repeat rows 1 through 4.",
+    ] {
+        assert!(
+            StitchPattern::from_knitspeak(&format!("{four}{ok}")).is_ok(),
+            "{ok}"
+        );
+    }
+    let m = pattern_error(StitchPattern::from_knitspeak(&format!(
+        "{four}Repeat rows 3-4."
+    )));
+    assert!(
+        m.contains("knitted once") && m.contains("rows 3 to 4 alone"),
+        "{m}"
+    );
+    let m = pattern_error(StitchPattern::from_knitspeak(&format!(
+        "{four}Repeat rows 1-6."
+    )));
+    assert!(m.contains("row 6 is not given"), "{m}");
+    let m = pattern_error(StitchPattern::from_knitspeak(&format!(
+        "{four}Repeat rows 1-4 and blah blah."
+    )));
+    assert!(
+        m.contains("cannot read \"blah blah\"") || m.contains("and blah blah"),
+        "{m}"
+    );
     // "Repeat rows 1-4" and "Multiple of" lines are accepted.
     assert!(StitchPattern::from_knitspeak(
         "Multiple of 4 sts.\nRow 1 (RS): *k2, p2; rep from *.\nRow 2: *k2, p2; rep from *.\nRepeat rows 1 and 2."

@@ -151,6 +151,12 @@ impl RowSheet {
                         self.defined.resize(n, None);
                         self.explicit.resize(n, None);
                     }
+                    if self.defined[n - 1].is_some() {
+                        return Err(KnitError::Pattern(format!(
+                            "{what}: row {n} is given twice (an earlier statement gives it \
+                             too): give each row once"
+                        )));
+                    }
                     self.defined[n - 1] = Some(index);
                     if let Some(rs) = header.side {
                         self.explicit[n - 1] = Some(rs);
@@ -167,34 +173,13 @@ impl RowSheet {
     /// so its rows come twice, the second time on the other side and numbered on from the
     /// first (see the module docs of [`super`]).
     pub(super) fn plan(&self) -> Result<Vec<(usize, bool, usize)>> {
-        let (ref_row, ref_rs) = self.side_ref.unwrap_or((1, true));
+        let (ref_row, ref_rs) = self.parity_ref();
         let parity_rs = |row: usize| self.in_round || ((row % 2 == ref_row % 2) == ref_rs);
+        let height = self.height();
         let by_side = self.by_side;
-        let height = self.defined.len().max(
-            if by_side.iter().any(Option::is_some) || self.even.is_some() {
-                2
-            } else {
-                0
-            },
-        );
-        // "All WS rows" after "Row 7" means row 8 too: the repeat ends on a whole pair of rows.
-        let side_of = |row: usize| {
-            self.explicit
-                .get(row - 1)
-                .copied()
-                .flatten()
-                .unwrap_or_else(|| parity_rs(row))
-        };
-        let height = if height % 2 == 1
-            && (by_side[usize::from(side_of(height + 1))].is_some() || self.even.is_some())
-        {
-            height + 1
-        } else {
-            height
-        };
         let mut plan: Vec<(usize, bool, usize)> = Vec::with_capacity(height);
         for row in 1..=height {
-            let rs = side_of(row);
+            let rs = self.side_of(row);
             let index = self
                 .defined
                 .get(row - 1)
@@ -221,4 +206,117 @@ impl RowSheet {
         }
         Ok(plan)
     }
+
+    /// The row (and its side) the alternation of sides is counted from.
+    fn parity_ref(&self) -> (usize, bool) {
+        self.side_ref.unwrap_or((1, true))
+    }
+
+    /// The side of `row`: its header's, or by alternation.
+    fn side_of(&self, row: usize) -> bool {
+        let (ref_row, ref_rs) = self.parity_ref();
+        self.explicit
+            .get(row - 1)
+            .copied()
+            .flatten()
+            .unwrap_or(self.in_round || ((row % 2 == ref_row % 2) == ref_rs))
+    }
+
+    /// The rows the headers give, 1 to this: the highest row numbered, at least 2 with an
+    /// "All WS rows" kind of header, and a whole pair where such a header covers the next.
+    pub(super) fn height(&self) -> usize {
+        let by_side = self.by_side;
+        let height = self.defined.len().max(
+            if by_side.iter().any(Option::is_some) || self.even.is_some() {
+                2
+            } else {
+                0
+            },
+        );
+        // "All WS rows" after "Row 7" means row 8 too: the repeat ends on a whole pair of rows.
+        if height % 2 == 1
+            && (by_side[usize::from(self.side_of(height + 1))].is_some() || self.even.is_some())
+        {
+            height + 1
+        } else {
+            height
+        }
+    }
+}
+
+/// Words a pattern may end a `Repeat rows` note with that change nothing here.
+const REPEAT_TAILS: [&str; 9] = [
+    "for pattern",
+    "for patt",
+    "for pat",
+    "for the pattern",
+    "for stitch pattern",
+    "to desired length",
+    "for desired length",
+    "until desired length",
+    "as desired",
+];
+
+/// Checks a note (`Repeat rows 1-4.`) against the `height` rows the headers give: one that
+/// repeats every row says what the chart does anyway; one that repeats only some is an error
+/// (the rows outside it are knitted once, and the chart repeats all of its rows), as is one
+/// that names a row not given or says more than this reader understands. Other notes
+/// (`Multiple of 6 sts plus 5.`) pass.
+pub(super) fn check_repeat_note(note: &str, height: usize) -> Result<()> {
+    let lower = note.trim().to_lowercase();
+    let Some(rest) = strip_any(&lower, &["repeat ", "rep "]) else {
+        return Ok(());
+    };
+    let Some(rest) = strip_any(
+        rest.trim_start(),
+        &["rows", "row", "rounds", "round", "rnds", "rnd"],
+    ) else {
+        return Ok(());
+    };
+    let shown = note.trim();
+    let unread = |what: &str| {
+        KnitError::Pattern(format!(
+            "\"{shown}\": cannot read \"{what}\" (write e.g. \"Repeat rows 1-4.\")"
+        ))
+    };
+    let digits = |s: &str| -> (Option<usize>, usize) {
+        let s = s.trim_start();
+        let n = s.len() - s.trim_start_matches(|c: char| c.is_ascii_digit()).len();
+        (s[..n].parse().ok(), s.len() - n)
+    };
+    let rest = rest.trim();
+    let (first, left) = digits(rest);
+    let first = first.ok_or_else(|| unread(rest))?;
+    let mut tail = rest[rest.len() - left..].trim_start();
+    let mut last = first;
+    for sep in ["-", "\u{2013}", "to ", "through ", "and ", ","] {
+        if let Some(after) = tail.strip_prefix(sep) {
+            let (n, left) = digits(after);
+            if let Some(n) = n {
+                last = n;
+                tail = after[after.len() - left..].trim_start();
+            }
+            break;
+        }
+    }
+    let tail = tail.trim_end_matches('.').trim();
+    if !tail.is_empty() && !REPEAT_TAILS.contains(&tail) {
+        return Err(unread(tail));
+    }
+    if first == 0 || last < first {
+        return Err(unread(rest));
+    }
+    if last > height {
+        return Err(KnitError::Pattern(format!(
+            "\"{shown}\": row {last} is not given (the rows run from 1 to {height})"
+        )));
+    }
+    if (first, last) != (1, height) {
+        return Err(KnitError::Pattern(format!(
+            "\"{shown}\": the rows outside {first} to {last} are knitted once (set-up or \
+             finishing rows), and knitwear repeats every row it is given over the whole \
+             surface: give rows {first} to {last} alone, numbered from 1, to knit the repeat"
+        )));
+    }
+    Ok(())
 }

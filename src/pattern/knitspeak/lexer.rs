@@ -11,6 +11,18 @@ pub(super) fn opens_statement(lower: &str) -> bool {
     HEADER_WORDS.iter().any(|w| lower.starts_with(w)) && lower.contains(':')
 }
 
+/// `text` without the title lines in parentheses it opens with.
+pub(super) fn after_titles(text: &str) -> &str {
+    let mut rest = text.trim_start();
+    while let Some(line) = rest.lines().next() {
+        if !title(line) {
+            break;
+        }
+        rest = rest[line.len()..].trim_start();
+    }
+    rest
+}
+
 /// Lines that say something true of the pattern but nothing a chart needs.
 fn ignorable(line: &str) -> bool {
     let l = line.trim().to_lowercase();
@@ -27,14 +39,37 @@ fn ignorable(line: &str) -> bool {
         && !l.contains(':')
 }
 
+/// Whether `line` is a title or comment in parentheses, as many pasted patterns open with
+/// (`(Seed stitch)`). Only read before the first statement: after it, a line in brackets may
+/// be a row's continuation (`(yo, k1)`).
+fn title(line: &str) -> bool {
+    let l = line.trim().trim_end_matches('.');
+    l.starts_with('(') && l.ends_with(')')
+}
+
+/// The statements of a text and its notes.
+pub(super) struct Statements {
+    /// `(header, body)` in the order written.
+    pub(super) rows: Vec<(String, String)>,
+    /// The lines and sentences a chart needs nothing from (`Repeat rows 1-4.`, `Multiple of
+    /// 6 sts plus 5.`), as written, for the checks that read them.
+    pub(super) notes: Vec<String>,
+}
+
 /// Splits the text into `(header, body)` statements. A header runs to its `:`; a body runs to
-/// the next header (a new line, or a row word after a full stop).
-pub(super) fn statements(text: &str) -> Vec<(String, String)> {
+/// the next header (a new line, or a row word after a full stop). Title lines in parentheses
+/// before the first statement are skipped.
+pub(super) fn statements(text: &str) -> Statements {
     let mut out: Vec<(String, String)> = Vec::new();
+    let mut notes = Vec::new();
     for line in text.lines() {
         let mut rest = line.trim();
+        if out.is_empty() && title(rest) {
+            continue;
+        }
         while !rest.is_empty() {
             if ignorable(rest) {
+                notes.push(rest.to_string());
                 break;
             }
             let Some(colon) = rest.find(':') else {
@@ -54,7 +89,7 @@ pub(super) fn statements(text: &str) -> Vec<(String, String)> {
             rest = after[end..].trim();
         }
     }
-    out
+    Statements { rows: out, notes }
 }
 
 /// Where the next statement starts in `s`: a row word right after a full stop.

@@ -6,8 +6,13 @@
 //! - Row headers: `Row 1 (RS):`, `Row 2:`, `Rows 2, 3, and 4:`, `Rows 5-8:`, `Rnd 1:` /
 //!   `Rnds 1 and 2:` / `Round 3:` (in the round every row is worked from the right side),
 //!   `All WS rows:`, `All RS rows:`, `All even-numbered rows:`. Statements may share a line
-//!   (`Row 1: Knit. Row 2: Purl.`). `Repeat rows 1-4.` and `Multiple of 6 sts plus 5.` lines
-//!   are accepted and ignored: the chart repeats anyway.
+//!   (`Row 1: Knit. Row 2: Purl.`). `Multiple of 6 sts plus 5.` lines are accepted and
+//!   ignored: the chart repeats anyway. So is `Repeat rows 1-4.` (also `Repeat row 1`,
+//!   `Rep rows 1 and 2 for pattern`) where it repeats every row given; one that repeats only
+//!   some (`Repeat rows 7-18.` after six set-up rows) is an error that says so, since the
+//!   rows outside it are knitted once and the chart repeats all its rows. Each row number
+//!   may be given once. Title lines in parentheses before the first row (`(Seed stitch)`)
+//!   are skipped.
 //! - Sides: a header's `(RS)` / `(WS)` sets the side of its rows; other rows of flat knitting
 //!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
 //!   number of rows turns over between repeats, so the chart holds the rows twice, the second
@@ -73,7 +78,7 @@ pub(crate) use layout::{lcm, normalised, wrap};
 use self::body::parse_body;
 use self::headers::{parse_header, RowSheet};
 use self::layout::{lay_out, RowPlan};
-use self::lexer::{opens_statement, statements};
+use self::lexer::{after_titles, opens_statement, statements};
 use super::StitchPattern;
 use crate::error::{KnitError, Result};
 
@@ -88,7 +93,8 @@ pub const MAX_KNITSPEAK_ROWS: usize = crate::pattern::MAX_PATTERN_ROWS;
 /// Reads Knitspeak text (see the module docs) into a pattern whose chart is as seen on the
 /// right side, row 1 at the bottom.
 pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
-    let statements = statements(text);
+    let lexed = statements(text);
+    let statements = lexed.rows;
     if statements.is_empty() {
         return Err(KnitError::Pattern(
             "no Knitspeak rows found: write e.g. \"Row 1 (RS): *k2, p2; rep from *.\"".into(),
@@ -103,6 +109,9 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
         let parsed = parse_body(body, &what)?;
         sheet.cover(rows, &what, bodies.len())?;
         bodies.push((what, parsed));
+    }
+    for note in &lexed.notes {
+        headers::check_repeat_note(note, sheet.height())?;
     }
     let rows: Vec<RowPlan> = sheet
         .plan()?
@@ -119,5 +128,5 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
 
 /// Whether `text` looks like Knitspeak rather than a symbol chart: it starts with a row header.
 pub fn looks_like_knitspeak(text: &str) -> bool {
-    opens_statement(&text.trim_start().to_lowercase())
+    opens_statement(&after_titles(text).to_lowercase())
 }
