@@ -8,6 +8,9 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
 PY=${PYTHON:-python3}
+# Four bpy builds (about 1 GB each unpacked) are installed below: pip's cache would keep a
+# second copy of every wheel, and a CI disk has run out of room here once.
+export PIP_NO_CACHE_DIR=1
 # Blender versions smoke-tested beside the suite's (see below and scripts/test.sh).
 SMOKE_BLENDERS="42:3.11 45:3.11 52:3.13"
 if [ ! -x .venv/bin/python ]; then
