@@ -418,6 +418,103 @@ fn repeats_groups_counts_and_spelling() {
 }
 
 #[test]
+fn counts_notes_words_and_numbering_as_patterns_write_them() {
+    // Issue 17, bug 2: a stated count after a whole-row phrase is no stitch: `Purl (6 sts)`
+    // purls the row, and 6 is a width the piece can have.
+    assert_eq!(
+        chart("Row 1 (RS): Knit.\nRow 2: Purl (6 sts)."),
+        chart("Row 1 (RS): Knit.\nRow 2: Purl.")
+    );
+    let m = pattern_error(StitchPattern::from_knitspeak(
+        "Row 1 (RS): *k2, p2; rep from *.\nRow 2: Purl (6 sts).",
+    ));
+    assert!(
+        m.contains("(6 sts)") && m.contains("Row 1 needs a multiple of 4"),
+        "{m}"
+    );
+    // A stated count on an all-over row is checked against the piece it describes.
+    let rib = "Row 2 (WS): p2, *k2, p2; rep from *.";
+    assert!(StitchPattern::from_knitspeak(&format!(
+        "Row 1 (RS): k2, *p2, k2; rep from * (14 sts).\n{rib}"
+    ))
+    .is_ok());
+    let m = pattern_error(StitchPattern::from_knitspeak(&format!(
+        "Row 1 (RS): k2, *p2, k2; rep from * (15 sts).\n{rib}"
+    )));
+    assert!(m.contains("(15 sts)") && m.contains("plus 2"), "{m}");
+    // A width note in brackets is a note, not an unclosed bracket or a stitch.
+    for note in ["(multiple of 2 sts, plus 2)", "(a multiple of 2 sts + 2)"] {
+        assert_eq!(
+            chart(&format!(
+                "Row 1 (RS): *k1, p1; rep from * {note}.\nRow 2: Purl."
+            )),
+            chart("Row 1 (RS): *k1, p1; rep from *.\nRow 2: Purl."),
+            "{note}"
+        );
+    }
+    // Counts as words, wherever a count is written.
+    assert_eq!(
+        chart("Rnd 1: [k1, p1] two times, k2tog three times, yo three times, p2."),
+        chart("Rnd 1: [k1, p1] 2 times, k2tog 3 times, yo 3 times, p2.")
+    );
+    assert_eq!(
+        chart("Rnd 1: *k2, p2; rep from * to last two sts, k2.\nRnd 2: Knit (six sts)."),
+        chart("Rnd 1: *k2, p2; rep from * to last 2 sts, k2.\nRnd 2: Knit (6 sts).")
+    );
+    assert_eq!(
+        chart("Rnd 1: *k2, p1; rep from * two more times."),
+        chart("Rnd 1: k2, p1, k2, p1, k2, p1.")
+    );
+    // Bug 8: `p0` is a count of nothing, not a stitch to suggest.
+    let m = pattern_error(StitchPattern::from_knitspeak("Row 1: k2, p0, k2."));
+    assert!(m.contains("\"p0\" works no stitches"), "{m}");
+    // ... and a run that stops short is named as written, not as "to end".
+    let m = pattern_error(StitchPattern::from_knitspeak(
+        "Row 1: *k1, p1; rep from *, purl to last st, k1.",
+    ));
+    assert!(m.contains("\"p to last st\" inside or after"), "{m}");
+    // Rows copied from the middle of a text keep their numbers: the repeat is the rows
+    // given, from the lowest, and its sides follow the numbers (odd rows RS).
+    let p = ks("Row 3 (RS): *k1, p1; rep from *.\nRow 4: *k1, p1; rep from *.");
+    assert_eq!(p.height(), 2);
+    assert!(same_cells(
+        &p,
+        &ks("Row 1 (RS): *k1, p1; rep from *.\nRow 2: *k1, p1; rep from *.")
+    ));
+    let m = pattern_error(StitchPattern::from_knitspeak(
+        "Row 3 (RS): Knit.\nRow 5: Knit.",
+    ));
+    assert!(m.contains("row 4 has no instructions (rows 3 to 5"), "{m}");
+    assert!(
+        StitchPattern::from_knitspeak("Row 3 (RS): Knit.\nRow 4: Purl.\nRepeat rows 3 and 4.")
+            .is_ok()
+    );
+}
+
+#[test]
+fn edge_shaping_is_refused_never_dropped() {
+    // Issue 17, bug 3: the decrease and increase outside the repeat shape the piece's edges;
+    // the chart is cut from the middle of the piece, so they would be dropped without a word.
+    let m = pattern_error(StitchPattern::from_knitspeak(
+        "Row 1 (RS): ssk, k to last st, m1r, k1.\nRow 2: Purl.",
+    ));
+    assert!(
+        m.contains("Row 1 (RS)")
+            && m.contains("\"ssk\"")
+            && m.contains("\"m1r\"")
+            && m.contains("edge shaping"),
+        "{m}"
+    );
+    // Edge stitches that keep the count (a selvedge) are still left out, as before.
+    assert_eq!(
+        chart("Row 1 (RS): sl1, *k1, p1; rep from * to last st, k1.\nRow 2: Purl."),
+        chart("Row 1 (RS): *k1, p1; rep from *.\nRow 2: Purl.")
+    );
+    // A panel keeps its edges, shaping included: its count is checked as a whole.
+    assert!(StitchPattern::from_knitspeak("Row 1 (RS): ssk, k3, yo, k1.\nRow 2: Purl.").is_ok());
+}
+
+#[test]
 fn phases_of_repeats_line_up_from_the_piece_edges() {
     // Bobbles: a multiple of 6 plus 5; row 3's bobbles and row 7's are three columns apart
     // however the chart is cut.

@@ -4,6 +4,7 @@
 //! [`parse_stitch`] from the one vocabulary.
 
 use super::lexer::{tokens, Tok};
+use super::numbers;
 use super::{MAX_BRACKET_DEPTH, MAX_KNITSPEAK_WIDTH};
 use crate::error::{KnitError, Result};
 use crate::pattern::instruction::MAX_CROSS_SIDE;
@@ -57,21 +58,81 @@ struct BodyParser<'a> {
     single: bool,
 }
 
-/// `3 times`, `twice`, `once`, `3x` -> the count.
+/// `3 times`, `three times`, `twice`, `once`, `3x` -> the count.
 fn times(s: &str) -> Option<usize> {
     let s = s.trim().to_lowercase();
     match s.as_str() {
         "once" => return Some(1),
         "twice" => return Some(2),
-        "thrice" | "three times" => return Some(3),
-        "four times" => return Some(4),
+        "thrice" => return Some(3),
         _ => {}
     }
     let n = s
         .strip_suffix("times")
         .or_else(|| s.strip_suffix("x"))?
         .trim();
-    n.parse().ok().filter(|&n| n >= 1)
+    numbers::count(n).filter(|&n| n >= 1)
+}
+
+/// `6 sts`, `six stitches`, `1 st` (lower case) -> the stitch count.
+fn stitch_count(lower: &str) -> Option<usize> {
+    let n = lower
+        .strip_suffix("stitches")
+        .or_else(|| lower.strip_suffix("sts"))
+        .or_else(|| lower.strip_suffix("st"))?;
+    numbers::count(n)
+}
+
+/// Whether a bracket opening with `lower` is a note on the pattern's width, as in `k1
+/// (multiple of 2 sts, plus 2).`, rather than stitches.
+fn width_note(lower: &str) -> bool {
+    [
+        "multiple of",
+        "a multiple of",
+        "worked over",
+        "over a multiple",
+    ]
+    .iter()
+    .any(|w| lower.starts_with(w))
+}
+
+/// Instructions written in `toks` outside stitch counts (`(6 sts)`) and width notes: a body
+/// of one (`Purl (6 sts).`) fills the row with it.
+fn instructions_outside_counts(toks: &[Tok]) -> usize {
+    let mut n = 0;
+    let mut i = 0;
+    while i < toks.len() {
+        if let Tok::Open(_) = toks[i] {
+            // The next bracket after this one: a group is set aside only if it is flat.
+            let next = toks[i + 1..]
+                .iter()
+                .position(|t| matches!(t, Tok::Close(_) | Tok::Open(_)))
+                .map(|k| i + 1 + k);
+            if let Some(j) = next.filter(|&j| matches!(toks[j], Tok::Close(_))) {
+                let texts: Vec<String> = toks[i + 1..j]
+                    .iter()
+                    .filter_map(|t| match t {
+                        Tok::Text(t) => Some(t.trim().to_lowercase()),
+                        _ => None,
+                    })
+                    .collect();
+                let aside = match texts.first() {
+                    Some(first) if width_note(first) => true,
+                    Some(_) => texts.iter().all(|t| stitch_count(t).is_some()),
+                    None => false,
+                };
+                if aside {
+                    i = j + 1;
+                    continue;
+                }
+            }
+        }
+        if !matches!(toks[i], Tok::Sep) {
+            n += 1;
+        }
+        i += 1;
+    }
+    n
 }
 
 /// `k2tog 3 times` -> (`k2tog`, 3); a phrase without a count -> (phrase, 1).
@@ -86,7 +147,7 @@ fn split_times(s: &str) -> (String, usize) {
     if let Some((head, n)) = s
         .strip_suffix("times")
         .and_then(|h| h.trim().rsplit_once(' '))
-        .and_then(|(h, n)| Some((h, n.parse::<usize>().ok().filter(|&n| n >= 1)?)))
+        .and_then(|(h, n)| Some((h, numbers::count(n).filter(|&n| n >= 1)?)))
     {
         return (head.trim().to_string(), n);
     }
@@ -112,12 +173,12 @@ fn until(s: &str) -> Option<Until> {
             .trim_end_matches("stitches")
             .trim_end_matches("sts")
             .trim_end_matches("st");
-        return n.trim().parse().ok().map(Until::Last);
+        return numbers::count(n).map(Until::Last);
     }
     let more = s
         .strip_suffix("more times")
         .or_else(|| s.strip_suffix("times more"))
-        .map(|n| n.trim().parse::<usize>().ok());
+        .map(numbers::count);
     match (s, more) {
         ("once more", _) => Some(Until::Times(2)),
         ("twice more", _) => Some(Until::Times(3)),
@@ -129,6 +190,23 @@ fn until(s: &str) -> Option<Until> {
 impl BodyParser<'_> {
     fn peek(&self) -> Option<&Tok> {
         self.toks.get(self.at)
+    }
+
+    /// Passes over the rest of a bracket opened with `open`, nested brackets included.
+    fn skip_to_close(&mut self, open: char) -> Result<()> {
+        let mut depth = 1usize;
+        while let Some(tok) = self.peek() {
+            match tok {
+                Tok::Open(_) => depth += 1,
+                Tok::Close(_) => depth -= 1,
+                _ => {}
+            }
+            self.at += 1;
+            if depth == 0 {
+                return Ok(());
+            }
+        }
+        Err(self.err(&open.to_string(), "this bracket is never closed"))
     }
 
     fn err(&self, token: &str, why: &str) -> KnitError {
@@ -161,6 +239,13 @@ impl BodyParser<'_> {
                     return Err(self.err(&c.to_string(), "a closing bracket with no opening one"));
                 }
                 Tok::Open(c) => {
+                    // `(multiple of 2 sts, plus 2)`: says what the chart's repeat does anyway.
+                    if let Some(Tok::Text(t)) = self.peek() {
+                        if width_note(t.trim().to_lowercase().as_str()) {
+                            self.skip_to_close(c)?;
+                            continue;
+                        }
+                    }
                     // Written patterns nest brackets two or three deep; a bound keeps the
                     // recursion far from the end of any thread's stack.
                     if depth >= MAX_BRACKET_DEPTH {
@@ -201,16 +286,9 @@ impl BodyParser<'_> {
         let lower = t.to_lowercase();
         let lower = lower.trim();
         if in_brackets {
-            let count = lower
-                .trim_end_matches("stitches")
-                .trim_end_matches("sts")
-                .trim_end_matches("st")
-                .trim();
-            if count.len() < lower.len() {
-                if let Ok(n) = count.parse() {
-                    els.push(El::Count(n));
-                    return Ok(());
-                }
+            if let Some(n) = stitch_count(lower) {
+                els.push(El::Count(n));
+                return Ok(());
             }
         }
         if [
@@ -270,7 +348,7 @@ impl BodyParser<'_> {
 /// A row's body (after its header's `:`), in working order.
 pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
     let toks = tokens(body);
-    let single = toks.iter().filter(|t| !matches!(t, Tok::Sep)).count() == 1;
+    let single = instructions_outside_counts(&toks) == 1;
     let mut p = BodyParser {
         single,
         toks,
@@ -320,8 +398,13 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
             }
             El::Fill(s, u, at) => {
                 if stage != 0 {
+                    let to = match u {
+                        Until::Last(1) => "to last st".to_string(),
+                        Until::Last(n) => format!("to last {n} sts"),
+                        _ => "to end".to_string(),
+                    };
                     return Err(KnitError::Pattern(format!(
-                        "{what}, instruction {at}: \"{} to end\" inside or after another \
+                        "{what}, instruction {at}: \"{} {to}\" inside or after another \
                          repeat",
                         s.ins.name()
                     )));
@@ -349,6 +432,19 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
 
 /// An unknown stitch, with the closest one the vocabulary offers.
 fn unknown(what: &str, instruction: usize, token: &str) -> KnitError {
+    // `p0`: a stitch the vocabulary knows, worked no times.
+    let lower = token.trim().to_lowercase();
+    let head = lower.trim_end_matches(|c: char| c.is_ascii_digit());
+    if head.len() < lower.len()
+        && numbers::count(&lower[head.len()..]) == Some(0)
+        && parse_stitch(&format!("{head}1")).is_some()
+    {
+        return KnitError::Pattern(format!(
+            "{what}, instruction {instruction}: \"{}\" works no stitches: a stitch count is 1 \
+             or more (leave the instruction out)",
+            token.trim()
+        ));
+    }
     let closest = suggest(token);
     // A well-formed cross too wide for the vocabulary is "closest" to itself: say why instead.
     if closest.eq_ignore_ascii_case(token.trim()) {

@@ -175,10 +175,10 @@ impl RowSheet {
     pub(super) fn plan(&self) -> Result<Vec<(usize, bool, usize)>> {
         let (ref_row, ref_rs) = self.parity_ref();
         let parity_rs = |row: usize| self.in_round || ((row % 2 == ref_row % 2) == ref_rs);
-        let height = self.height();
+        let (first, height) = (self.first(), self.height());
         let by_side = self.by_side;
         let mut plan: Vec<(usize, bool, usize)> = Vec::with_capacity(height);
-        for row in 1..=height {
+        for row in first..=height {
             let rs = self.side_of(row);
             let index = self
                 .defined
@@ -189,8 +189,8 @@ impl RowSheet {
                 .or(self.even.filter(|_| row % 2 == 0))
                 .ok_or_else(|| {
                     KnitError::Pattern(format!(
-                        "row {row} has no instructions (rows 1 to {height} must all be given, \
-                         or covered by \"All WS rows\" / \"All RS rows\")"
+                        "row {row} has no instructions (rows {first} to {height} must all be \
+                         given, or covered by \"All WS rows\" / \"All RS rows\")"
                     ))
                 })?;
             plan.push((row, rs, index));
@@ -198,13 +198,23 @@ impl RowSheet {
         // Flat knitting with an odd number of rows turns over between repeats (unless the
         // headers say otherwise).
         let alternating = plan.iter().all(|&(row, rs, _)| rs == parity_rs(row));
-        if !self.in_round && height % 2 == 1 && alternating {
-            for r in 0..height {
+        let count = plan.len();
+        if !self.in_round && count % 2 == 1 && alternating {
+            for r in 0..count {
                 let (row, rs, index) = plan[r];
-                plan.push((row + height, !rs, index));
+                plan.push((row + count, !rs, index));
             }
         }
         Ok(plan)
+    }
+
+    /// The first row of the repeat: the lowest row numbered (a pattern copied from the middle
+    /// of a text may start at `Row 3`), or 1.
+    pub(super) fn first(&self) -> usize {
+        self.defined
+            .iter()
+            .position(Option::is_some)
+            .map_or(1, |i| i + 1)
     }
 
     /// The row (and its side) the alternation of sides is counted from.
@@ -262,7 +272,7 @@ const REPEAT_TAILS: [&str; 9] = [
 /// (the rows outside it are knitted once, and the chart repeats all of its rows), as is one
 /// that names a row not given or says more than this reader understands. Other notes
 /// (`Multiple of 6 sts plus 5.`) pass.
-pub(super) fn check_repeat_note(note: &str, height: usize) -> Result<()> {
+pub(super) fn check_repeat_note(note: &str, first_row: usize, height: usize) -> Result<()> {
     let lower = note.trim().to_lowercase();
     let Some(rest) = strip_any(&lower, &["repeat ", "rep "]) else {
         return Ok(());
@@ -306,16 +316,19 @@ pub(super) fn check_repeat_note(note: &str, height: usize) -> Result<()> {
     if first == 0 || last < first {
         return Err(unread(rest));
     }
-    if last > height {
-        return Err(KnitError::Pattern(format!(
-            "\"{shown}\": row {last} is not given (the rows run from 1 to {height})"
-        )));
+    for row in [first, last] {
+        if row < first_row || row > height {
+            return Err(KnitError::Pattern(format!(
+                "\"{shown}\": row {row} is not given (the rows run from {first_row} to \
+                 {height})"
+            )));
+        }
     }
-    if (first, last) != (1, height) {
+    if (first, last) != (first_row, height) {
         return Err(KnitError::Pattern(format!(
             "\"{shown}\": the rows outside {first} to {last} are knitted once (set-up or \
              finishing rows), and knitwear repeats every row it is given over the whole \
-             surface: give rows {first} to {last} alone, numbered from 1, to knit the repeat"
+             surface: give rows {first} to {last} alone to knit the repeat"
         )));
     }
     Ok(())

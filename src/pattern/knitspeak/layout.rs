@@ -131,7 +131,11 @@ pub(super) fn lay_out(rows: &[RowPlan]) -> Result<StitchPattern> {
         return StitchPattern::from_written_rows("knitspeak", &written);
     }
 
-    // All-over: one repeat W wide.
+    // All-over: one repeat W wide, cut from the middle of the piece, so that the stitches
+    // outside each row's repeat (its edges) are not knitted.
+    for row in rows {
+        check_no_edge_shaping(row)?;
+    }
     let mut width = 1usize;
     for row in rows {
         let w = row.widths().1.unwrap_or(1);
@@ -191,6 +195,12 @@ pub(super) fn lay_out(rows: &[RowPlan]) -> Result<StitchPattern> {
         other => other,
     })?;
 
+    for row in rows {
+        if let Some(count) = row.body.count {
+            check_stated_count(row, count, rows)?;
+        }
+    }
+
     let max_edges = rows.iter().map(|r| r.widths().0).max().unwrap_or(0);
     let min_n = 2 * max_edges + 4 * width;
     let n = min_n + (n0 + width - min_n % width) % width;
@@ -240,6 +250,67 @@ pub(super) fn lay_out(rows: &[RowPlan]) -> Result<StitchPattern> {
         .map(|row| row[start..start + width].to_vec())
         .collect();
     StitchPattern::from_rows("knitspeak", normalised(window, width))
+}
+
+/// An all-over row's edges must keep the stitch count: a decrease or increase there
+/// (`ssk, k to last st, m1r, k1`) shapes the piece's edge, which knitwear does not knit (the
+/// surface's outline gives the fabric its shape), and dropping it without a word would knit
+/// something else than the text says.
+fn check_no_edge_shaping(row: &RowPlan) -> Result<()> {
+    let shaping: Vec<String> = row
+        .body
+        .before
+        .iter()
+        .chain(&row.body.after)
+        .filter(|s| s.ins.stitches_in() != s.ins.stitches_out())
+        .map(|s| s.ins.name())
+        .collect();
+    if shaping.is_empty() {
+        return Ok(());
+    }
+    let mut names: Vec<String> = Vec::new();
+    for n in shaping {
+        if !names.contains(&n) {
+            names.push(n);
+        }
+    }
+    let list = names
+        .iter()
+        .map(|n| format!("\"{n}\""))
+        .collect::<Vec<_>>()
+        .join(", ");
+    Err(KnitError::Pattern(format!(
+        "{}: {list} outside the repeat change the stitch count at the edges of the piece \
+         (edge shaping). knitwear knits the repeat over the whole surface, whose outline gives \
+         the fabric its shape, so it has no edges to shape: leave the edge increases and \
+         decreases out, or write the row without a repeat (a panel of fixed width)",
+        row.what
+    )))
+}
+
+/// A stated count (`(14 sts)`) on an all-over row must be a width the piece can have: one
+/// that every row fits, and that this row leaves.
+fn check_stated_count(row: &RowPlan, count: usize, rows: &[RowPlan]) -> Result<()> {
+    for other in rows {
+        let (edges, repeat) = other.widths();
+        let w = repeat.unwrap_or(1);
+        if count < edges || (count - edges) % w != 0 {
+            return Err(KnitError::Pattern(format!(
+                "{}: the row says ({count} sts), but Row {} needs {}",
+                row.what,
+                other.number,
+                other.describe_width()
+            )));
+        }
+    }
+    let out: usize = row.over(count).iter().map(|i| i.stitches_out()).sum();
+    if out != count {
+        return Err(KnitError::Pattern(format!(
+            "{}: the row says ({count} sts) but leaves {out} stitches",
+            row.what
+        )));
+    }
+    Ok(())
 }
 
 /// Whether two rows' repeats can share a piece width.

@@ -12,7 +12,8 @@
 //!   some (`Repeat rows 7-18.` after six set-up rows) is an error that says so, since the
 //!   rows outside it are knitted once and the chart repeats all its rows. Each row number
 //!   may be given once. Title lines in parentheses before the first row (`(Seed stitch)`)
-//!   are skipped.
+//!   are skipped. The rows need not start at 1 (rows copied from the middle of a text): the
+//!   repeat runs from the lowest row given to the highest, each row numbered as written.
 //! - Sides: a header's `(RS)` / `(WS)` sets the side of its rows; other rows of flat knitting
 //!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
 //!   number of rows turns over between repeats, so the chart holds the rows twice, the second
@@ -21,7 +22,13 @@
 //!   sts, k3` (the stitches after the repeat must be exactly that many), `rep from * 2 more
 //!   times` (a fixed count), stitches before and after the repeat, `[k1, p1] 3 times`, `(yo,
 //!   k1) twice`, `k2tog 3 times`, `k to end` / `k to last 3 sts` / `Knit.` / `Purl.` (a
-//!   one-stitch repeat), and stitch counts `(18 sts)` (checked on rows of a fixed width).
+//!   one-stitch repeat; also `Purl (6 sts).`), and stitch counts `(18 sts)`: on a row of a
+//!   fixed width the count it leaves, on an all-over row a width the piece can have. Counts
+//!   may be words (`three times`, `to last two sts`, `(six sts)`). A width note in brackets
+//!   (`(multiple of 2 sts, plus 2)`) is read as a note.
+//! - Edges: the stitches outside an all-over row's repeat are not knitted (see below), so
+//!   edge shaping there (`ssk, k to last st, m1r, k1`) is an error that says so, never
+//!   dropped without a word.
 //! - Stitches (any case; `-` and spaces are interchangeable), as listed once in
 //!   [`super::vocabulary`]: `k`, `p` with counts (`k2`, `K 2`, `knit 2`), `k tbl` / `k1-tbl` /
 //!   `p2 tbl`, `sl1` / `sl 2 pwise wyif` / `sl1 wyib` (without `wyib`/`wyif` the yarn is held
@@ -72,6 +79,7 @@ mod body;
 mod headers;
 mod layout;
 mod lexer;
+mod numbers;
 
 pub(crate) use layout::{lcm, normalised, wrap};
 
@@ -111,7 +119,7 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
         bodies.push((what, parsed));
     }
     for note in &lexed.notes {
-        headers::check_repeat_note(note, sheet.height())?;
+        headers::check_repeat_note(note, sheet.first(), sheet.height())?;
     }
     let rows: Vec<RowPlan> = sheet
         .plan()?
