@@ -28,7 +28,9 @@
 //! chart is never silently misread; `o = p` in its legend restores the old meaning).
 //!
 //! A legend line `SYMBOL = STITCH` (Knitspeak, one stitch: `X = 2/2 RC`, `s = sl1 wyif`,
-//! `O = yo`, `o = p`) gives a symbol its stitch and overrides a default. A stitch that makes
+//! `O = yo`, `o = p`) gives a symbol its stitch and overrides a default. `(WS)` after the
+//! stitch (`Y = 2/2 RC (WS)`, `s = sl1 wyif (WS)`) means worked from the wrong side, drawn as
+//! it shows on the right side. A stitch that makes
 //! several stitches (a cable) is drawn as a run of its symbol over all its columns: `XXXX` with
 //! `X = 2/2 RC`; a longer run is several of them side by side (`XXXXXXXX` is two 2/2 RCs), so a
 //! run must be a whole number of them. A run may continue across the chart's right edge onto
@@ -83,7 +85,13 @@ const SPARE_SYMBOLS: &str = "XYZACDEFGHJLMNRSTUWacdefghjlmnrstuwxyz0123456789";
 type Charted = (Instruction, bool);
 
 /// The right-side stitch that shows as `ws` worked from the wrong side, and whether its face
-/// is flipped; `None` where no right-side stitch shows like it (crosses, `sk2p`, `cdd`).
+/// is flipped; `None` where no right-side stitch shows like it (`sk2p`, `cdd`).
+///
+/// A cross worked from the wrong side is seen from the right side with its two groups
+/// swapped (`m/n` becomes `n/m`: the first group worked is at the other end) but leaning the
+/// same way, and what the wrong side knits shows as purl: a knit cross shows as the
+/// right-side cross with both groups purled (flipped), and a purl cross (`RPC`, knit group in
+/// front from the wrong side, so behind from the right) as the right-side purl cross itself.
 fn from_wrong_side(ws: Instruction) -> Option<Charted> {
     use Instruction as I;
     Some(match ws {
@@ -103,7 +111,21 @@ fn from_wrong_side(ws: Instruction) -> Option<Charted> {
             true,
         ),
         I::Bobble | I::K3tog | I::Sssk => (ws, true),
-        I::Sk2p | I::Cdd | I::Cross { .. } => return None,
+        I::Cross {
+            m,
+            n,
+            left,
+            purl_back,
+        } => (
+            I::Cross {
+                m: n,
+                n: m,
+                left,
+                purl_back,
+            },
+            !purl_back,
+        ),
+        I::Sk2p | I::Cdd => return None,
     })
 }
 
@@ -112,9 +134,21 @@ fn legend_name((ins, flip): Charted) -> String {
     if !flip {
         return ins.name();
     }
+    // The wrong-side stitch that `from_wrong_side` maps to `(ins, true)`.
     let ws = match ins {
         Instruction::Slip { yarn_front } => Instruction::Slip {
             yarn_front: !yarn_front,
+        },
+        Instruction::Cross {
+            m,
+            n,
+            left,
+            purl_back,
+        } => Instruction::Cross {
+            m: n,
+            n: m,
+            left,
+            purl_back,
         },
         other => other,
     };
@@ -382,6 +416,22 @@ fn candidates() -> Vec<Charted> {
     ] {
         all.push((i, true));
     }
+    // Knit crosses worked from the wrong side (see `from_wrong_side`).
+    let flipped: Vec<Charted> = all
+        .iter()
+        .filter(|(i, flip)| {
+            !flip
+                && matches!(
+                    i,
+                    I::Cross {
+                        purl_back: false,
+                        ..
+                    }
+                )
+        })
+        .map(|&(i, _)| (i, true))
+        .collect();
+    all.extend(flipped);
     all
 }
 
@@ -535,4 +585,57 @@ pub fn write_chart(p: &StitchPattern) -> String {
         ));
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every cross worked from the wrong side, alone in a row over knits, decodes as the
+    /// right-side stitch `from_wrong_side` names, and its legend line reads back to it.
+    #[test]
+    fn wrong_side_crosses_chart_as_from_wrong_side_says() {
+        for m in 1..=MAX_CROSS_SIDE {
+            for n in 1..=MAX_CROSS_SIDE {
+                for left in [false, true] {
+                    for purl_back in [false, true] {
+                        let ws = Instruction::Cross {
+                            m,
+                            n,
+                            left,
+                            purl_back,
+                        };
+                        let w = usize::from(m + n);
+                        let rows = [
+                            WrittenRow {
+                                number: 1,
+                                right_side: true,
+                                instructions: vec![Instruction::Knit; w],
+                            },
+                            WrittenRow {
+                                number: 2,
+                                right_side: false,
+                                instructions: vec![ws],
+                            },
+                        ];
+                        let p = StitchPattern::from_rows("ws", cells_from_rows(&rows).unwrap())
+                            .unwrap();
+                        let want = from_wrong_side(ws).unwrap();
+                        let fits_at = (0..w).any(|phase| {
+                            decode_row(&p, 1, phase, &[want]).is_some_and(|d| d == [want])
+                        });
+                        assert!(fits_at, "{} (WS) is not {want:?}", ws.name());
+                        if want.1 {
+                            assert_eq!(legend_name(want), format!("{} (WS)", ws.name()));
+                        }
+                        // The chart draws it (no row left as faces) and reads back to it.
+                        let chart = write_chart(&p);
+                        assert!(!chart.contains("# rows"), "{}:\n{chart}", ws.name());
+                        let back = parse_chart(&chart).unwrap();
+                        assert_eq!(back.cells, p.cells, "{}:\n{chart}", ws.name());
+                    }
+                }
+            }
+        }
+    }
 }
