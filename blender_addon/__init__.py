@@ -22,7 +22,7 @@ def poll_plush_source(_self: bpy.types.PropertyGroup, obj: bpy.types.Object) -> 
     return obj.type in {"SURFACE", "MESH"}
 
 
-from . import bake, follow, operators, panels, plush, properties, texture  # noqa: E402
+from . import bake, follow, operators, panels, plush, properties, texture, tuning_store  # noqa: E402
 
 _CLASSES: tuple[type, ...] = (
     operators.OBJECT_OT_knitwear_knit,
@@ -41,9 +41,11 @@ def register() -> None:
     follow.register()
     plush.register()
     texture.register()
+    tuning_store.register()
 
 
 def unregister() -> None:
+    tuning_store.unregister()
     texture.unregister()
     plush.unregister()
     follow.unregister()

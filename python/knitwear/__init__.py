@@ -45,7 +45,9 @@ from ._core import (
     measure_clearance,
     measure_cover,
     plush,
+    set_tuning_store,
     settings,
+    tuning_store,
 )
 
 
@@ -90,4 +92,6 @@ __all__ = [
     "measure_cover",
     "settings",
     "plush",
+    "set_tuning_store",
+    "tuning_store",
 ]

@@ -34,7 +34,9 @@ __all__ = [
     "measure_clearance",
     "measure_cover",
     "plush",
+    "set_tuning_store",
     "settings",
+    "tuning_store",
 ]
 
 class KnitError(Exception):
@@ -292,6 +294,13 @@ def knit_texture(
     the surface's (u,v) domain (a grid's [0, 1]^2, a mesh's `domain`), row 0 at the smallest
     v, transparent where no yarn is. Same stitches, perturbation and colours as `Knit` with
     the same settings."""
+
+def set_tuning_store(path: str | os.PathLike[str] | None) -> None:
+    """Keeps tunings in `path` (None: on no disk), for this process, overriding the
+    KNITWEAR_TUNING_STORE environment variable."""
+
+def tuning_store() -> str | None:
+    """The folder tunings are kept in, or None."""
 
 def settings(kind: str = "knit") -> list[dict[str, Any]]:
     """Every setting of a knit or a plush (``kind``) as declared once in the core: name,

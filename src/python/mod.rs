@@ -12,6 +12,7 @@ mod pile;
 mod settings;
 mod surface;
 mod texture;
+mod tuning_store;
 
 use conversion::*;
 use errors::*;
@@ -59,5 +60,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     texture::register(m)?;
     settings::register(m)?;
     detail::register(m)?;
+    tuning_store::register(m)?;
     Ok(())
 }

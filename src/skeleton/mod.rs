@@ -23,6 +23,7 @@ pub mod sampling_density;
 mod spline;
 pub mod stitch_shape;
 pub mod tuning;
+pub mod tuning_store;
 mod yarn_skeleton;
 
 pub use key_points::{key_points, LoopShape, KEY_POINTS};

@@ -19,7 +19,10 @@ use glam::{Vec2, Vec3};
 use super::crossings::crossing_order;
 use super::offsets::COEFFICIENTS;
 use super::offsets::{Shape, DEFAULT_SHAPE, SHAPE_COEFFICIENTS};
-use super::{contact, sample_piece, yarn_pieces, LoopShape, NormalOffsets, SplineSampling};
+use super::relief::ContactRelief;
+use super::{
+    contact, sample_piece, yarn_pieces, LoopShape, NormalOffsets, SplineSampling, KEY_POINTS,
+};
 use crate::lattice::Lattice;
 use crate::metrics::{clearance, cover, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
 use crate::pattern::{Form, StitchPattern};
@@ -40,7 +43,7 @@ const CAP: f32 = 3.0;
 const Q_RATIO: f32 = 1.0 / 64.0;
 const Q_TENSION: f32 = 1.0 / 100.0;
 
-#[derive(Clone, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
 struct Key {
     /// The pattern tuned for: the user's, or its stand-in ([`stand_in`]).
     pattern: StitchPattern,
@@ -274,11 +277,114 @@ fn tuned(key: Key) -> Tuned {
     if let Some(t) = slot.as_ref() {
         return t.clone();
     }
+    // Another process of this build may have tuned it ([`super::tuning_store`]).
+    let text = format!("{key:?}");
+    if let Some(t) = super::tuning_store::load(&text).and_then(|w| Tuned::from_words(&w)) {
+        *slot = Some(t.clone());
+        return t;
+    }
     let t = run();
     if !crate::cancel::requested() {
         *slot = Some(t.clone());
+        if let Some(words) = t.to_words() {
+            super::tuning_store::save(&text, &words);
+        }
     }
     t
+}
+
+impl Tuned {
+    /// The tuning as words for the store ([`super::tuning_store`]): every `f32` as its bits.
+    /// `None` for offsets holding a piece's own wales ([`NormalOffsets::straight`]), which a
+    /// tuning never holds.
+    fn to_words(&self) -> Option<Vec<u32>> {
+        let o = &self.offsets;
+        if o.straight.is_some() {
+            return None;
+        }
+        let mut words: Vec<u32> = Vec::new();
+        words.extend(o.x.iter().map(|v| v.to_bits()));
+        words.push(o.diameter.to_bits());
+        words.extend(o.shape.iter().map(|v| v.to_bits()));
+        words.extend(o.loop_shape.to_array().iter().map(|v| v.to_bits()));
+        words.push(self.clearance_min.to_bits());
+        words.push(self.per_lean.to_bits());
+        words.push(u32::from(self.crosses_right));
+        match &o.relief {
+            None => words.push(0),
+            Some(r) => {
+                words.push(1);
+                words.push(u32::try_from(r.height).ok()?);
+                words.push(u32::try_from(r.width).ok()?);
+                words.extend(r.lambdas.iter().flatten().map(|v| v.to_bits()));
+            }
+        }
+        Some(words)
+    }
+
+    /// The tuning [`to_words`](Self::to_words) wrote, or `None` if `words` are not one.
+    fn from_words(words: &[u32]) -> Option<Tuned> {
+        let mut at = words.iter().copied();
+        let (x, diameter, shape, loop_shape, clearance_min, per_lean) = {
+            let mut float = || at.next().map(f32::from_bits);
+            let x: [f32; COEFFICIENTS] = floats(&mut float)?;
+            let diameter = float()?;
+            let shape: [f32; SHAPE_COEFFICIENTS] = floats(&mut float)?;
+            let loop_shape = LoopShape::from_array(floats(&mut float)?);
+            (x, diameter, shape, loop_shape, float()?, float()?)
+        };
+        let crosses_right = match at.next()? {
+            0 => false,
+            1 => true,
+            _ => return None,
+        };
+        let relief = match at.next()? {
+            0 => None,
+            1 => {
+                let height = usize::try_from(at.next()?).ok()?;
+                let width = usize::try_from(at.next()?).ok()?;
+                let rest: Vec<f32> = at.by_ref().map(f32::from_bits).collect();
+                if height * width == 0 || rest.len() != height.checked_mul(width)? * KEY_POINTS {
+                    return None;
+                }
+                let lambdas = rest
+                    .chunks_exact(KEY_POINTS)
+                    .map(|c| std::array::from_fn(|i| c[i]))
+                    .collect();
+                Some(Arc::new(ContactRelief {
+                    height,
+                    width,
+                    lambdas,
+                }))
+            }
+            _ => return None,
+        };
+        if at.next().is_some() {
+            return None;
+        }
+        Some(Tuned {
+            offsets: NormalOffsets {
+                x,
+                diameter,
+                shape,
+                relief,
+                straight: None,
+                loop_shape,
+            },
+            clearance_min,
+            per_lean,
+            crosses_right,
+        })
+    }
+}
+
+/// The next `N` values of `next`, or `None` if it runs out.
+fn floats<const N: usize>(next: &mut impl FnMut() -> Option<f32>) -> Option<[f32; N]> {
+    let mut out = [0.0f32; N];
+    for v in &mut out {
+        *v = next()?;
+    }
+    Some(out)
 }
 
 /// Clearance (min, p01) in diameters of `pattern` on a flat patch with unit yarn diameter.
@@ -746,3 +852,51 @@ const START_POINTS: &[[f32; COEFFICIENTS]] = &[
     [0.25, 0.75, 0.75, 0.25, 0.75, 0.75, 0.0],
     [0.75, 0.25, 0.25, 0.75, 0.25, 0.25, 0.0],
 ];
+
+#[cfg(test)]
+mod store_tests {
+    use super::*;
+
+    fn sample(relief: bool) -> Tuned {
+        Tuned {
+            offsets: NormalOffsets {
+                x: std::array::from_fn(|i| 0.1 * i as f32 - 0.3),
+                diameter: 1.0,
+                shape: std::array::from_fn(|i| 1.0 / (i as f32 + 3.0)),
+                relief: relief.then(|| {
+                    Arc::new(ContactRelief {
+                        height: 2,
+                        width: 3,
+                        lambdas: (0..6)
+                            .map(|c| std::array::from_fn(|k| (c * 7 + k) as f32 * 1e-3))
+                            .collect(),
+                    })
+                }),
+                straight: None,
+                loop_shape: LoopShape::PAPER,
+            },
+            clearance_min: 0.987_654_3,
+            per_lean: 0.5,
+            crosses_right: true,
+        }
+    }
+
+    #[test]
+    fn a_tuning_reads_back_from_its_words_and_from_nothing_else() {
+        for relief in [false, true] {
+            let t = sample(relief);
+            let words = t.to_words().unwrap();
+            assert_eq!(Tuned::from_words(&words).as_ref(), Some(&t));
+            for cut in 1..words.len() {
+                assert_eq!(
+                    Tuned::from_words(&words[..words.len() - cut]),
+                    None,
+                    "{cut}"
+                );
+            }
+            let mut longer = words.clone();
+            longer.push(0);
+            assert_eq!(Tuned::from_words(&longer), None);
+        }
+    }
+}

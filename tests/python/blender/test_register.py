@@ -1,9 +1,10 @@
 """Installing, enabling and registering the extension."""
 
+from pathlib import Path
 from types import ModuleType
 
 import bpy
-from blender_scenes import ADDON_MODULE
+from blender_scenes import ADDON_MODULE, SMALL, nurbs_patch
 
 
 def _registered() -> dict[str, bool]:
@@ -61,3 +62,21 @@ def test_settings_survive_save_and_reload(tmp_path: object, api: ModuleType) -> 
     assert knit.knitwear.is_knit
     assert knit.knitwear.source == source
     assert (knit.knitwear.pattern, knit.knitwear.courses, knit.knitwear.wales) == ("seed", 3, 4)
+
+
+def test_tunings_are_kept_in_the_extension_user_folder(
+    addon: ModuleType, api: ModuleType, core: ModuleType
+) -> None:
+    # Blender's folder for an extension's own files; a knit's tuning is stored there, so the
+    # next Blender (a reopened scene, a farm node) skips the search.
+    folder = Path(bpy.utils.extension_path_user(ADDON_MODULE, path="tuning"))
+    assert core.tuning_store() == str(folder)
+    api.knit_object(nurbs_patch(), **(SMALL | {"pattern": "moss"}))
+    files = list(folder.glob("*.tuning"))
+    assert files and all(f.read_text().startswith("knitwear tuning store 1\n") for f in files)
+    addon.unregister()
+    try:
+        assert core.tuning_store() is None, "unregister must give the core back as it was"
+    finally:
+        addon.register()
+    assert core.tuning_store() == str(folder)
