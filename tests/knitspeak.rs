@@ -707,3 +707,26 @@ proptest::proptest! {
         }
     }
 }
+
+#[test]
+fn a_chart_knows_which_of_its_columns_cut_a_stitch_across_its_edge() {
+    // The twisted cable rib, pXXp with X = 1/1 LC: only the boundary inside the cross cuts.
+    let rib = StitchPattern::from_chart("pkkp\npXXp\n\nX = 1/1 LC").unwrap();
+    let cuts: Vec<usize> = (0..4).map(|c| rib.cuts_at_column(c)).collect();
+    assert_eq!(cuts[0], 0);
+    assert_eq!(cuts[1], 0);
+    assert!(cuts[2] > 0, "{cuts:?}");
+    assert_eq!(cuts[3], 0);
+    // Rotating the chart moves the cut with it, and is the chart read from that column.
+    let split = rib.columns_rotated(2);
+    assert!(split.cuts_at_column(0) > 0);
+    assert!(same_cells(
+        &split,
+        &StitchPattern::from_chart("kppk\nXppX\n\nX = 1/1 LC").unwrap()
+    ));
+    assert!(same_cells(&split.columns_rotated(2), &rib));
+    // A decrease reaching across the edge is cut there too; a plain chart nowhere.
+    let lace = StitchPattern::from_chart("kkkk\n/Okk").unwrap();
+    assert!((0..4).any(|c| lace.cuts_at_column(c) > 0));
+    assert!((0..4).all(|c| ks("Rnd 1: *k2, p2; rep from *.").cuts_at_column(c) == 0));
+}

@@ -162,6 +162,41 @@ impl StitchPattern {
         p
     }
 
+    /// The chart started `shift` columns further right: column `c` of the result is column
+    /// `(c + shift) % width` of this one. The same fabric (offsets are relative), drawn from
+    /// another column of its repeat.
+    pub fn columns_rotated(&self, shift: usize) -> Self {
+        let w = self.width;
+        let mut p = self.clone();
+        for (i, cell) in p.cells.iter_mut().enumerate() {
+            let (row, col) = (i / w, i % w);
+            *cell = self.cells[row * w + (col + shift) % w];
+        }
+        p
+    }
+
+    /// How many stitches reach across the boundary between columns `col - 1` and `col` (mod
+    /// the width) to the loops they are pulled through: the crossings, gathers and leans a
+    /// chart starting at `col` would cut at its edge.
+    pub fn cuts_at_column(&self, col: usize) -> usize {
+        let w = self.width as i64;
+        let col = col as i64;
+        self.cells
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.sources > 0)
+            .filter(|&(i, c)| {
+                let here = i as i64 % w;
+                let first = here + i64::from(c.source_offset);
+                let last = first + i64::from(c.sources) - 1;
+                let (lo, hi) = (here.min(first), here.max(last));
+                // A boundary `b` (between columns b - 1 and b) with lo < b <= hi, b = col mod w.
+                let b = lo + 1 + (col - lo - 1).rem_euclid(w);
+                b <= hi
+            })
+            .count()
+    }
+
     /// The smallest repeat of the chart: the least `h x w` (dividing the height and the
     /// width) whose cells, repeated, give every cell of this one. A chart drawn as several
     /// repeats of one motif knits exactly as that motif.

@@ -20,6 +20,21 @@ impl ContactRelief {
         self.lambdas[(course % self.height) * self.width + wale % self.width]
     }
 
+    /// The corrections of the chart started `shift` columns further right
+    /// ([`crate::pattern::StitchPattern::columns_rotated`]): column `c` of the result is
+    /// column `(c + shift) % width` of this one.
+    pub fn columns_rotated(&self, shift: usize) -> Self {
+        let w = self.width;
+        let lambdas = (0..self.height * w)
+            .map(|i| self.lambdas[(i / w) * w + (i % w + shift) % w])
+            .collect();
+        Self {
+            height: self.height,
+            width: w,
+            lambdas,
+        }
+    }
+
     /// The largest correction, in diameters.
     pub fn largest(&self) -> f32 {
         self.lambdas

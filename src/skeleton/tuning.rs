@@ -99,9 +99,10 @@ pub fn tuned_offsets(
     diameter: f32,
     tension: f32,
 ) -> (NormalOffsets, f32, f32) {
-    let tuned = tuned(key(pattern, stitch_width, stitch_height, diameter, tension));
+    let (key, shift) = key(pattern, stitch_width, stitch_height, diameter, tension);
+    let tuned = tuned(key);
     (
-        tuned.offsets.scaled(diameter),
+        in_users_phase(tuned.offsets, shift).scaled(diameter),
         tuned.clearance_min,
         tuned.per_lean,
     )
@@ -120,7 +121,8 @@ pub fn straight_offsets(
     diameter: f32,
     tension: f32,
 ) -> NormalOffsets {
-    straight(key(pattern, stitch_width, stitch_height, diameter, tension)).scaled(diameter)
+    let (key, shift) = key(pattern, stitch_width, stitch_height, diameter, tension);
+    in_users_phase(straight(key), shift).scaled(diameter)
 }
 
 /// [`straight_offsets`] for `key`, in diameters.
@@ -170,23 +172,27 @@ pub fn offsets_with_straight_wales(
     tension: f32,
     straight_wales: Vec<bool>,
 ) -> NormalOffsets {
-    type EdgeKey = (Key, Vec<bool>);
+    // The wales are the piece's, so the phase the pattern starts at is part of the key.
+    type EdgeKey = (Key, usize, Vec<bool>);
     static CACHE: OnceLock<Mutex<HashMap<EdgeKey, NormalOffsets>>> = OnceLock::new();
     let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
-    let key = key(pattern, stitch_width, stitch_height, diameter, tension);
-    let edge_key = (key.clone(), straight_wales);
+    let (key, shift) = key(pattern, stitch_width, stitch_height, diameter, tension);
+    let edge_key = (key.clone(), shift, straight_wales);
     if let Some(o) = cache.lock().ok().and_then(|c| c.get(&edge_key).cloned()) {
         return o.scaled(diameter);
     }
     let tuned = tuned(key.clone());
-    let offsets = tuned
-        .offsets
-        .clone()
-        .with_straight(straight(key.clone()), edge_key.1.clone());
-    // The stand-in, not `pattern`: the same cells when it is exact, and bounded work.
+    let offsets = in_users_phase(tuned.offsets.clone(), shift).with_straight(
+        in_users_phase(straight(key.clone()), shift),
+        edge_key.2.clone(),
+    );
+    // The stand-in, not `pattern`: the same cells when it is exact, and bounded work; in the
+    // user's phase, as the piece's wales are.
+    let w = key.pattern.width();
+    let users = key.pattern.columns_rotated((w - shift % w) % w);
     let edge = key.exact.then(|| {
         contact::relieve_edges(
-            &key.pattern,
+            &users,
             &offsets,
             (key.width as f32 * Q_RATIO, key.height as f32 * Q_RATIO),
             key.tension as f32 * Q_TENSION,
@@ -227,16 +233,47 @@ fn stand_in(pattern: &StitchPattern) -> (StitchPattern, bool) {
     (repeat.plain_window(rows, cols), false)
 }
 
-/// The cache key: the pattern, and the stitch proportions (in diameters) and tension
-/// quantised.
+/// The column the tuning starts an exact stand-in's chart at (issue 17, bug 1): where it
+/// cuts the fewest stitches reaching across to their loops, its own first column if that is
+/// one of them (every preset's chart is: none is cut there), else the first that is. A chart
+/// started in the middle of a cable tuned its patch with the cable cut at both sides, and
+/// knitted at a third of the clearance of the same fabric charted from another column.
+///
+/// Not every phase of a chart is tuned alike: two phases that both cut nothing put
+/// different stitches at the patch's sides, and tune a little differently (0.385 and 0.400
+/// for the twisted cable rib's). A canonical phase (the least chart in cell order) would
+/// tune all of them alike, but at worse clearance than the presets' own phases for most
+/// cables (0.41 -> 0.24 for the C4), so a chart's own phase is kept where it cuts nothing.
+fn canonical_shift(p: &StitchPattern) -> usize {
+    let w = p.width();
+    let cuts: Vec<usize> = (0..w).map(|s| p.cuts_at_column(s)).collect();
+    let least = cuts.iter().copied().min().unwrap_or(0);
+    (0..w).find(|&s| cuts[s] == least).unwrap_or(0)
+}
+
+/// Offsets tuned on the chart started `shift` columns on ([`canonical_shift`]), for the
+/// chart as the user's pattern starts it: the relief's columns moved back.
+fn in_users_phase(offsets: NormalOffsets, shift: usize) -> NormalOffsets {
+    let relief = offsets.relief.as_ref().map(|r| {
+        let w = r.width;
+        Arc::new(r.columns_rotated((w - shift % w) % w))
+    });
+    NormalOffsets { relief, ..offsets }
+}
+
+/// The cache key (the stand-in in the phase it is tuned in, [`canonical_shift`], and the
+/// stitch proportions in diameters and tension quantised), and the columns that phase is
+/// shifted by from the user's.
 fn key(
     pattern: &StitchPattern,
     stitch_width: f32,
     stitch_height: f32,
     diameter: f32,
     tension: f32,
-) -> Key {
+) -> (Key, usize) {
     let (pattern, exact) = stand_in(pattern);
+    let shift = if exact { canonical_shift(&pattern) } else { 0 };
+    let pattern = pattern.columns_rotated(shift);
     let key = Key {
         pattern,
         exact,
@@ -248,7 +285,7 @@ fn key(
         proportions(stitch_width, stitch_height, diameter),
         (key.width as f32 * Q_RATIO, key.height as f32 * Q_RATIO)
     );
-    key
+    (key, shift)
 }
 
 /// The tuning for `key`, from the cache or tuned now (in diameters).
