@@ -580,15 +580,19 @@ fn unbalanced_patterns_name_rows_and_counts() {
     let m = pattern_error(StitchPattern::from_knitspeak(
         "Row 1: *yo, k1; rep from *. Row 2: purl.",
     ));
-    assert!(
-        m.contains("Row 1") && m.contains("Row 2") && m.contains('2') && m.contains('1'),
-        "{m}"
-    );
+    assert!(m.contains("Row 1 turns 1 stitches into 2"), "{m}");
     let m = pattern_error(StitchPattern::from_knitspeak(
         "Rnd 1: *yo, k2tog, yo, k1; rep from *.",
     ));
     assert!(
         m.contains("Row 1") && m.contains("3") && m.contains("4"),
+        "{m}"
+    );
+    // Issue 17, bug 8: a one-row flat pattern is worked again from the wrong side as "row 2",
+    // a row the text never wrote: the message names the row that changes its count.
+    let m = pattern_error(StitchPattern::from_knitspeak("Row 1: k2tog, k1."));
+    assert!(
+        m.contains("Row 1 turns 3 stitches into 2") && !m.contains("Row 2"),
         "{m}"
     );
     // A chart row with a yo and no decrease.

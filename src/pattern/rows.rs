@@ -42,13 +42,27 @@ pub fn cells_from_rows(rows: &[WrittenRow]) -> Result<Vec<Vec<Stitch>>> {
     if h == 0 {
         return Err(KnitError::Pattern("the pattern has no rows".into()));
     }
-    for (r, row) in rows.iter().enumerate() {
+    for row in rows {
         if row.instructions.is_empty() {
             return Err(KnitError::Pattern(format!(
                 "Row {}: no stitches",
                 row.number
             )));
         }
+    }
+    // A row that changes its own count first: that is the cause, and the row after it may be
+    // one the text never wrote (flat knitting turned over, numbered on from the last).
+    for row in rows {
+        let (i, o) = (row.stitches_in(), row.stitches_out());
+        if i != o {
+            return Err(KnitError::Pattern(format!(
+                "Row {} turns {i} stitches into {o}: knitwear keeps every row's stitch count, \
+                 so a row's increases must be balanced by decreases in the same row",
+                row.number
+            )));
+        }
+    }
+    for (r, row) in rows.iter().enumerate() {
         let next = &rows[(r + 1) % h];
         let (out, next_in) = (row.stitches_out(), next.stitches_in());
         if out != next_in {
@@ -61,16 +75,6 @@ pub fn cells_from_rows(rows: &[WrittenRow]) -> Result<Vec<Vec<Stitch>>> {
                 "stitch counts do not balance: Row {} leaves {out} stitches but Row {} works \
                  {next_in}{wrap}",
                 row.number, next.number
-            )));
-        }
-    }
-    for row in rows {
-        let (i, o) = (row.stitches_in(), row.stitches_out());
-        if i != o {
-            return Err(KnitError::Pattern(format!(
-                "Row {} turns {i} stitches into {o}: knitwear keeps every row's stitch count, \
-                 so a row's increases must be balanced by decreases in the same row",
-                row.number
             )));
         }
     }

@@ -68,7 +68,7 @@ def test_from_file(tmp_path: Path) -> None:
     [
         ("Row 1: *k2, 2/2 RX; rep from *.", r"instruction 2.*2/2 RX.*did you mean \"2/2 RC\""),
         ("Row 1: *k2, k2tg; rep from *.", r"Row 1, instruction 2.*k2tg.*k2tog"),
-        ("Row 1: *yo, k1; rep from *. Row 2: purl.", "Row 1 leaves 2 stitches but Row 2 works 1"),
+        ("Row 1: *yo, k1; rep from *. Row 2: purl.", "Row 1 turns 1 stitches into 2"),
         ("Row 1: Knit.\nRow 3: Purl.", "row 2 has no instructions"),
         ("Row x: Knit.", "not a row header"),
     ],
