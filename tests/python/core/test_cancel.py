@@ -69,6 +69,10 @@ def test_a_cancel_with_no_call_running_does_not_stop_the_next_one() -> None:
 
 def test_ctrl_c_interrupts_a_first_knit() -> None:
     chart = fresh_chart(12)
+    # Python raises KeyboardInterrupt on SIGINT only if it started with SIGINT's default
+    # handling; a shell's background job starts with SIGINT ignored (where this test could
+    # not pass), so the handler a terminal gives is set here.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
     timer.start()
     try:
@@ -76,6 +80,7 @@ def test_ctrl_c_interrupts_a_first_knit() -> None:
             knitwear.knit(sheet(), knitwear.Pattern.from_chart(chart), courses=10, wales=10)
     finally:
         timer.cancel()
+        signal.signal(signal.SIGINT, previous)
     # The process goes on, and so does the core.
     r = knitwear.knit(sheet(), knitwear.Pattern.preset("stockinette"), courses=6, wales=6)
     assert r.stats["stitches"] == 36
