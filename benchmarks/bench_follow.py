@@ -8,12 +8,17 @@ The source is a UV-mapped grid (1 m square) with an animated shape key (a travel
 knit at default quality (6 ring segments, 16 samples per loop). For each stitch count it prints
 medians over --frames frame changes:
   sample    reading the evaluated source into the core's surface (positions, normals, UVs);
-  core      `Knit.positions` into the kept buffer (the core, in parallel);
-  write     one `foreach_set` of the positions plus `Mesh.update()`;
+  core      `Knit.positions` with `normals_out` into the kept buffers (the core, in parallel:
+            positions and the smooth normals, one pass);
+  write     `foreach_set` of the positions and of the custom normals, plus `Mesh.update()`;
   frame     the whole `follow()` (what the frame handler does per knit);
   floor     `foreach_set` of the same number of positions alone (the bare cost);
-  normals   Blender recomputing the normals afterwards, which the next draw or render pays;
-  fps       1 / frame, and 1 / (frame + normals).
+  normals   what the next draw or render pays for normals afterwards (Blender shades with the
+            custom normals the frame wrote, from 4.5: about nothing);
+  fps       1 / frame, and 1 / (frame + normals);
+and, for comparison, the path that writes positions only (what a knit did before it brought
+its normals, and still does in Blender 4.2): its frame, the recompute Blender then pays on the
+next draw, and its fps with it.
 No assertions: figures only.
 """
 
@@ -76,10 +81,11 @@ def bench(stitches: int, frames: int) -> dict[str, float]:
     mesh = knit.data
     nv = len(mesh.vertices)
     t: dict[str, list[float]] = {k: [] for k in ("sample", "core", "write", "frame", "floor",
-                                                  "normals")}
+                                                  "normals", "old_frame", "old_normals")}
     follow.follow(knit)  # bind once
     follower = follow._followers[knit.session_uid]
     buffer = np.empty((nv, 3), np.float32)
+    normals = np.empty((nv, 3), np.float32)
     for k in range(frames):
         scene.frame_set(2 + 7 * k)
         depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -94,14 +100,26 @@ def bench(stitches: int, frames: int) -> dict[str, float]:
         sampled = api.sample_source(knit, bpy.context, depsgraph)
         t["sample"].append(time.perf_counter() - t0)
         t0 = time.perf_counter()
-        follower.knit.positions(sampled.surface, out=buffer)
+        follower.knit.positions(sampled.surface, out=buffer, normals_out=normals)
         t["core"].append(time.perf_counter() - t0)
         t0 = time.perf_counter()
+        mesh_build.write_normals(mesh, normals)
         mesh_build.write_positions(mesh, buffer)
         t["write"].append(time.perf_counter() - t0)
         t0 = time.perf_counter()
         mesh.attributes["position"].data.foreach_set("vector", buffer.ravel())
         t["floor"].append(time.perf_counter() - t0)
+    # The positions-only path: Blender computes the normals on the next draw.
+    mesh_build.write_normals(mesh, None)
+    for k in range(frames):
+        scene.frame_set(2 + 7 * k)
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        t0 = time.perf_counter()
+        follow.follow(knit, depsgraph=depsgraph, normals=False)
+        t["old_frame"].append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        mesh.vertex_normals[0].vector  # noqa: B018
+        t["old_normals"].append(time.perf_counter() - t0)
     row = {k: median_ms(v) for k, v in t.items()}
     row["stitches"] = side * side
     row["vertices"] = nv
@@ -124,6 +142,12 @@ def main() -> None:
         print(f"{r['stitches']:9,} {r['vertices']:10,} {r['sample']:8.1f} {r['core']:8.1f} "
               f"{r['write']:8.1f} {r['frame']:8.1f} {r['floor']:8.1f} {r['normals']:8.1f} "
               f"{1000 / r['frame']:6.1f} {1000 / (r['frame'] + r['normals']):6.1f}")
+    print()
+    print("positions only (Blender recomputes the normals on the next draw):")
+    print(f"{'stitches':>9} {'frame':>8} {'normals':>8} {'fps':>6} {'+norm':>6}   (ms)")
+    for r in rows:
+        print(f"{r['stitches']:9,} {r['old_frame']:8.1f} {r['old_normals']:8.1f} "
+              f"{1000 / r['old_frame']:6.1f} {1000 / (r['old_frame'] + r['old_normals']):6.1f}")
 
 
 if __name__ == "__main__":

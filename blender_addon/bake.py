@@ -21,7 +21,7 @@ import bpy
 import knitwear
 import numpy as np
 
-from . import follow, mesh_build
+from . import api, follow, mesh_build
 
 PC2_MAGIC = b"POINTCACHE2\0"
 CACHE_MODIFIER = "Knitwear Baked Animation"
@@ -95,6 +95,7 @@ def bake_animation(
     frame_before = scene.frame_current
     # The knit's own positions (what it shows outside the baked range) stay as they were.
     rest = mesh_build.read_positions(mesh)
+    rest_normals = mesh_build.read_normals(mesh)
     matrix_before = obj.matrix_world.copy()
     following = obj.knitwear.follow_source
     # The handler would follow too on each frame_set: the bake follows once, itself.
@@ -107,7 +108,7 @@ def bake_animation(
             write_pc2_header(handle, n, frame_start, frame_end - frame_start + 1)
             for frame in range(frame_start, frame_end + 1):
                 scene.frame_set(frame)
-                follow.follow(obj, context=context)
+                follow.follow(obj, context=context, normals=False)  # the cache holds none
                 positions = mesh_build.read_positions(mesh)
                 handle.write(positions.astype("<f4", copy=False).tobytes())
                 matrices.append(obj.matrix_world.copy())
@@ -119,6 +120,7 @@ def bake_animation(
             partial.unlink(missing_ok=True)
         scene.frame_set(frame_before)
         mesh_build.write_positions(mesh, rest)
+        mesh_build.write_normals(mesh, rest_normals)
         obj.matrix_world = matrix_before
         obj.knitwear.follow_source = following
         if isinstance(err, OSError):
@@ -139,6 +141,11 @@ def bake_animation(
             for path_name in ("location", "rotation_euler", "scale"):
                 obj.keyframe_insert(path_name, frame=frame)
     mesh_build.write_positions(mesh, rest)
+    # The cache moves the vertices and carries no normals: a knit that culls nothing shades
+    # with the ones Blender computes from them, not with those of the frame it stood at.
+    # (A culled knit keeps its own, which only the extension can move.)
+    culled = obj.get(api.SEEN_PROPERTY) is not None
+    mesh_build.write_normals(mesh, rest_normals if culled else None)
     scene.frame_set(frame_before)
     return path
 

@@ -1,5 +1,9 @@
 """What differs between the Blender versions the extension runs on, in one place.
 
+Blender 4.5 shades with a mesh's free custom normals, a float vector per vertex in the
+"custom_normal" attribute, and then computes none of its own; to 4.2 that attribute is just
+data (`FREE_CUSTOM_NORMALS`).
+
 Blender 5.2 moved a Geometry Nodes modifier's inputs out of its ID properties
 (``modifier["Socket_1"] = value``, now a `TypeError`) into
 ``modifier.properties.inputs.Socket_1.value``. Blender 4.2 to 5.0 have only the former.
@@ -8,6 +12,9 @@ Blender 5.2 moved a Geometry Nodes modifier's inputs out of its ID properties
 from typing import Any
 
 import bpy
+
+#: Whether this Blender shades with the "custom_normal" point attribute (4.5 and later).
+FREE_CUSTOM_NORMALS: bool = bpy.app.version >= (4, 5, 0)
 
 
 def _interface_inputs(modifier: bpy.types.NodesModifier) -> Any | None:

@@ -21,7 +21,7 @@ import knitwear
 import numpy as np
 from bpy.app.handlers import persistent
 
-from . import api, frame_handlers, mesh_build
+from . import api, blender_compat, frame_handlers, mesh_build
 
 
 @dataclass
@@ -32,6 +32,7 @@ class _Follower:
     #: What the binding was made from: a change rebinds.
     key: tuple[Any, ...]
     positions: np.ndarray
+    normals: np.ndarray
 
 
 #: Bindings by knit object (`ID.session_uid`), rebuilt on demand and dropped on file load.
@@ -63,7 +64,8 @@ def _follower(obj: bpy.types.Object, sampled: Any, scene: bpy.types.Scene) -> _F
             f"'{obj.name}' no longer matches its source's layout (its mesh was edited, or the "
             "source's UV map changed): use Update Knit"
         )
-    follower = _Follower(knit, key, np.empty((knit.vertex_count, 3), dtype=np.float32))
+    shape = (knit.vertex_count, 3)
+    follower = _Follower(knit, key, np.empty(shape, np.float32), np.empty(shape, np.float32))
     _followers[obj.session_uid] = follower
     return follower
 
@@ -73,20 +75,30 @@ def follow(
     *,
     context: bpy.types.Context | None = None,
     depsgraph: bpy.types.Depsgraph | None = None,
+    normals: bool = True,
 ) -> None:
     """Move knit object ``obj``'s yarn to its source's pose in ``depsgraph`` (default: the
-    context's): positions only, into the same mesh. Raises `knitwear.KnitError` when the knit
-    cannot follow (then nothing is changed)."""
+    context's): positions, and with ``normals`` the smooth normals that go with them, into
+    the same mesh. Raises `knitwear.KnitError` when the knit cannot follow (then nothing is
+    changed)."""
     context = context or bpy.context
     if not obj.knitwear.is_knit:
         raise knitwear.ParameterError(f"'{obj.name}' is not a knit: knit a surface first")
     depsgraph = depsgraph or context.evaluated_depsgraph_get()
     sampled = api.sample_source(obj, context, depsgraph)
     follower = _follower(obj, sampled, context.scene)
-    follower.knit.positions(sampled.surface, out=follower.positions)
-    if follower.knit.seen_triangles is not None:
-        # Culled hidden yarn shades with the whole knit's normals, which move with it.
-        mesh_build.write_normals(obj.data, follower.knit.normals(sampled.surface))
+    culled = follower.knit.seen_triangles is not None
+    # Culled hidden yarn shades with the whole knit's normals, which move with it. Any other
+    # knit gets its normals too where Blender shades with them: computed by the core with the
+    # positions, in the same pass, they spare Blender its own recompute on every draw.
+    normals = normals and (culled or blender_compat.FREE_CUSTOM_NORMALS)
+    follower.knit.positions(
+        sampled.surface,
+        out=follower.positions,
+        normals_out=follower.normals if normals else None,
+    )
+    if normals:
+        mesh_build.write_normals(obj.data, follower.normals)
     mesh_build.write_positions(obj.data, follower.positions)
     if obj.matrix_world != sampled.matrix:
         obj.matrix_world = sampled.matrix

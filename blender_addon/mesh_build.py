@@ -116,6 +116,16 @@ def _set_colors(mesh: bpy.types.Mesh, colors: np.ndarray) -> None:
 NORMAL_ATTRIBUTE = "custom_normal"
 
 
+def read_normals(mesh: bpy.types.Mesh) -> np.ndarray | None:
+    """``mesh``'s free custom normals, (V, 3) float32, or None where it has none."""
+    attribute = mesh.attributes.get(NORMAL_ATTRIBUTE)
+    if attribute is None or attribute.data_type != "FLOAT_VECTOR" or attribute.domain != "POINT":
+        return None
+    normals = np.empty((len(mesh.vertices), 3), dtype=np.float32)
+    attribute.data.foreach_get("vector", normals.ravel())
+    return normals
+
+
 def write_normals(mesh: bpy.types.Mesh, normals: np.ndarray | None) -> None:
     """Give ``mesh`` the knit's own vertex normals (a knit with its hidden yarn culled
     shades as the whole knit, whose triangles it no longer has), or none (``None``: a knit

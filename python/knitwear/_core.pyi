@@ -216,16 +216,20 @@ class Knit:
         self,
         surface: GridSurface | MeshSurface,
         out: npt.NDArray[np.float32] | None = None,
+        normals_out: npt.NDArray[np.float32] | None = None,
     ) -> npt.NDArray[np.float32]:
         """(V, 3) float32 positions for `surface` in a new pose, bit-identical to
-        `build(surface).vertices`; written into `out` when given."""
+        `build(surface).vertices`; written into `out` when given. With `normals_out`, the
+        smooth vertex normals (see `normals`) are written there in the same pass."""
     def normals(
         self,
         surface: GridSurface | MeshSurface,
         out: npt.NDArray[np.float32] | None = None,
     ) -> npt.NDArray[np.float32]:
-        """(V, 3) float32 vertex normals of a knit that culls its hidden yarn, for `surface`
-        in a new pose: bit-identical to `build(surface).normals`."""
+        """(V, 3) float32 unit vertex normals for `surface` in a new pose: the smooth normals
+        a renderer computes from the knit's triangles (angle-weighted, as Blender's); for a
+        knit that culls its hidden yarn, the whole knit's, bit-identical to
+        `build(surface).normals`."""
     @property
     def vertex_count(self) -> int: ...
     @property

@@ -12,4 +12,4 @@ pub use bundle::{
 };
 pub use frames::{frame_from_tangent, ring_frame};
 pub use subset::{MeshSubset, SubsetBuffers};
-pub use vertex_normals::VertexCorners;
+pub use vertex_normals::bundle_normals;

@@ -100,9 +100,9 @@ impl MeshSubset {
             });
     }
 
-    /// The kept vertices' positions (`(V, 3)` of the whole mesh) into `out` (`3 *
-    /// vertex_count()`).
-    pub fn gather_positions(&self, whole: &[f32], out: &mut [f32]) {
+    /// The kept vertices' 3-vectors (positions or normals, `(V, 3)` of the whole mesh) into
+    /// `out` (`3 * vertex_count()`).
+    pub fn gather_vectors(&self, whole: &[f32], out: &mut [f32]) {
         Self::gather(&self.vertices, whole, 3, out);
     }
 
@@ -198,7 +198,7 @@ mod tests {
         assert_eq!(b.corner_edges, vec![2, 1, 0]);
         assert_eq!(b.edges, vec![0, 1, 1, 2, 2, 0]);
         let mut gathered = vec![0.0; 9];
-        s.gather_positions(&pos, &mut gathered);
+        s.gather_vectors(&pos, &mut gathered);
         assert_eq!(gathered, b.positions);
     }
 

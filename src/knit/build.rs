@@ -11,8 +11,8 @@ use super::*;
 use crate::detail::Level;
 use crate::error::{KnitError, Result};
 use crate::geometry::{
-    build_bundle, piece_streams, stitch_seed, BundleCounts, EndTangents, FullDensityDraws,
-    PieceBuffers, TopologyBuffers,
+    build_bundle, bundle_normals, piece_streams, stitch_seed, BundleCounts, EndTangents,
+    FullDensityDraws, PieceBuffers, TopologyBuffers,
 };
 use crate::output_buffer;
 use crate::parallel::{run_in_pool, split_lengths};
@@ -132,8 +132,10 @@ impl PreparedKnit {
     }
 
     /// [`positions_into`](Self::positions_into), and with `normals` (`3 * vertex_count()`
-    /// floats) the vertex normals [`build`](Self::build) gives a knit with its hidden yarn
-    /// culled (an error for any other knit: it gives none).
+    /// floats) the smooth vertex normals of the whole knit at its vertices, in the same pass
+    /// (see [`bundle_normals`]): for a knit with its hidden yarn culled, the normals
+    /// [`build`](Self::build) gives it; for any other, the ones a renderer would compute from
+    /// its triangles, given so that it need not.
     pub fn positions_and_normals_into(
         &self,
         surface: &dyn Surface,
@@ -142,11 +144,6 @@ impl PreparedKnit {
     ) -> Result<()> {
         self.check_layout(surface)?;
         if let Some(n) = &normals {
-            if self.hidden.is_none() {
-                return Err(KnitError::Parameter(
-                    "only a knit that culls its hidden yarn has normals of its own".into(),
-                ));
-            }
             if n.len() != 3 * self.vertex_count() {
                 return Err(KnitError::Parameter(format!(
                     "the normals buffer holds {} floats; this knit needs {}",
@@ -166,13 +163,15 @@ impl PreparedKnit {
         run_in_pool(self.params.threads, || {
             let centrelines = self.centrelines(surface);
             match &self.hidden {
-                None => self.whole_positions(&centrelines, positions),
+                None => self.whole_positions(&centrelines, positions, normals),
                 Some(h) => {
-                    let mut whole = output_buffer::zeroed(3 * self.total.vertices as usize);
-                    self.whole_positions(&centrelines, &mut whole);
-                    h.subset.gather_positions(&whole, positions);
-                    if let Some(normals) = normals {
-                        h.corners.normals(&whole, &h.whole_triangles, normals);
+                    let nv = 3 * self.total.vertices as usize;
+                    let mut whole = output_buffer::zeroed(nv);
+                    let mut whole_normals = normals.as_ref().map(|_| output_buffer::zeroed(nv));
+                    self.whole_positions(&centrelines, &mut whole, whole_normals.as_deref_mut());
+                    h.subset.gather_vectors(&whole, positions);
+                    if let (Some(normals), Some(whole_normals)) = (normals, whole_normals) {
+                        h.subset.gather_vectors(&whole_normals, normals);
                     }
                 }
             }
@@ -182,22 +181,66 @@ impl PreparedKnit {
     }
 
     /// Every span's vertex positions, before any culling of hidden yarn.
-    pub(super) fn whole_positions(&self, centrelines: &Centrelines, positions: &mut [f32]) {
-        let pos = split_lengths(
-            positions,
-            &self
-                .counts
-                .iter()
-                .map(|c| 3 * c.vertices)
-                .collect::<Vec<_>>(),
-        );
-        pos.into_par_iter().enumerate().for_each(|(k, positions)| {
-            if crate::cancel::requested() {
-                return;
-            }
-            let mut bufs = PieceBuffers::positions_only(positions);
-            self.bundle_span(k, centrelines, &mut bufs);
-        });
+    pub(super) fn whole_positions(
+        &self,
+        centrelines: &Centrelines,
+        positions: &mut [f32],
+        normals: Option<&mut [f32]>,
+    ) {
+        let lengths = self.span_lengths(3);
+        let pos = split_lengths(positions, &lengths);
+        let nrm: Vec<Option<&mut [f32]>> = match normals {
+            Some(n) => split_lengths(n, &lengths).into_iter().map(Some).collect(),
+            None => pos.iter().map(|_| None).collect(),
+        };
+        pos.into_par_iter()
+            .zip(nrm)
+            .enumerate()
+            .for_each(|(k, (positions, normals))| {
+                if crate::cancel::requested() {
+                    return;
+                }
+                let mut bufs = PieceBuffers::positions_only(positions);
+                self.bundle_span(k, centrelines, &mut bufs);
+                if let Some(normals) = normals {
+                    // While the span's positions are still in cache.
+                    self.span_normals(k, bufs.positions, normals);
+                }
+            });
+    }
+
+    /// Every span's smooth vertex normals, from the whole mesh's `positions`.
+    fn whole_normals(&self, positions: &[f32]) -> Vec<f32> {
+        let mut normals = output_buffer::zeroed(positions.len());
+        let lengths = self.span_lengths(3);
+        let starts: Vec<usize> = lengths
+            .iter()
+            .scan(0, |at, &len| {
+                let start = *at;
+                *at += len;
+                Some(start)
+            })
+            .collect();
+        split_lengths(&mut normals, &lengths)
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(k, out)| {
+                let p = &positions[starts[k]..starts[k] + out.len()];
+                self.span_normals(k, p, out);
+            });
+        normals
+    }
+
+    /// Span `k`'s smooth vertex normals from its `positions` (see [`bundle_normals`]).
+    fn span_normals(&self, k: usize, positions: &[f32], out: &mut [f32]) {
+        let sp = self.spans[k];
+        let m = self.level_bundle[sp.level as usize].ring_segments;
+        bundle_normals(positions, sp.rings, m, sp.closed, out);
+    }
+
+    /// Floats per span in a per-vertex buffer of `width` floats per vertex.
+    fn span_lengths(&self, width: usize) -> Vec<usize> {
+        self.counts.iter().map(|c| width * c.vertices).collect()
     }
 
     /// Samples every piece's centreline (points, surface normals, owning stitch), in parallel.
@@ -320,9 +363,9 @@ impl PreparedKnit {
             None => self.bundles(&centrelines),
         };
         if let Some(h) = &self.hidden {
+            let whole = self.whole_normals(&out.positions);
             let mut normals = output_buffer::zeroed(3 * h.subset.vertex_count());
-            h.corners
-                .normals(&out.positions, &out.triangles, &mut normals);
+            h.subset.gather_vectors(&whole, &mut normals);
             out.normals = normals;
             let b = h.subset.apply(
                 &out.positions,

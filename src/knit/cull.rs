@@ -4,7 +4,7 @@
 use super::*;
 use crate::detail::DetailParams;
 use crate::error::{KnitError, Result};
-use crate::geometry::{MeshSubset, VertexCorners};
+use crate::geometry::MeshSubset;
 use crate::parallel::run_in_pool;
 use crate::surface::Surface;
 use crate::visibility::{seen_triangles, VisibilityPass};
@@ -82,14 +82,7 @@ impl PreparedKnit {
             word[..c.len()].copy_from_slice(c);
             crate::geometry::stitch_seed(h, u64::from_le_bytes(word) as usize, 0x5345_454e)
         });
-        let corners =
-            VertexCorners::new(&out.triangles, subset.vertex_count(), subset.vertex_index());
-        self.hidden = Some(HiddenCulled {
-            subset,
-            corners,
-            whole_triangles: out.triangles.clone(),
-            seen: bits,
-        });
+        self.hidden = Some(HiddenCulled { subset, seen: bits });
         if d.pinned_seen.is_none() {
             self.first_build.keep(c, out);
         }

@@ -27,7 +27,7 @@ use std::time::Instant;
 use crate::budget::OutputSize;
 use crate::detail::{Level, Span};
 use crate::error::Result;
-use crate::geometry::{BundleCounts, BundleSettings, MeshSubset, VertexCorners};
+use crate::geometry::{BundleCounts, BundleSettings, MeshSubset};
 use crate::pattern::StitchPattern;
 use crate::skeleton::{YarnPiece, YarnSkeleton};
 use crate::surface::{Surface, UvRect};
@@ -90,10 +90,6 @@ pub struct PreparedKnit {
 #[derive(Debug, Clone)]
 struct HiddenCulled {
     subset: MeshSubset,
-    /// The whole mesh's corners at each kept vertex, for its smooth normal.
-    corners: VertexCorners,
-    /// The whole mesh's triangles (its topology never changes).
-    whole_triangles: Vec<i32>,
     /// One bit per triangle of the whole mesh (see [`DetailParams::pinned_seen`]).
     seen: Vec<u8>,
 }

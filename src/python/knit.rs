@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::{PyArrayDyn, PyArrayMethods, PyReadwriteArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -335,53 +335,52 @@ impl PyKnit {
 
     /// Vertex positions only, `(V, 3)` float32, for `surface` in a new pose: bit-identical
     /// to `build(surface).vertices`. With `out` (a writable C-contiguous float32 `(V, 3)`
-    /// array) they are written there and `out` is returned: no allocation per frame.
-    #[pyo3(signature = (surface, out=None))]
+    /// array) they are written there and `out` is returned: no allocation per frame. With
+    /// `normals_out` (another such array) the knit's smooth vertex normals are written there
+    /// too, in the same pass (see `normals`).
+    #[pyo3(signature = (surface, out=None, normals_out=None))]
     fn positions(
         &self,
         py: Python<'_>,
         surface: &Bound<'_, PyAny>,
         out: Option<&Bound<'_, PyAny>>,
+        normals_out: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Py<PyAny>> {
         let surf = AnySurface::from_py(surface)?;
         let knit = self.inner.clone();
         let nv = knit.vertex_count();
+        let mut normals = normals_out
+            .map(|n| writable_rows(n, nv, "normals_out"))
+            .transpose()?;
+        let normals_slice = match normals.as_mut() {
+            Some(rw) => Some(contiguous(rw, "normals_out")?),
+            None => None,
+        };
         match out {
             None => {
                 let mut buf = crate::output_buffer::zeroed::<f32>(3 * nv);
                 let buf = guarded(py, move || {
-                    knit.positions_into(surf.as_dyn(), &mut buf).map(|_| buf)
+                    knit.positions_and_normals_into(surf.as_dyn(), &mut buf, normals_slice)
+                        .map(|_| buf)
                 })?;
                 rows(py, buf, 3)
             }
             Some(obj) => {
-                let arr = obj.cast::<PyArrayDyn<f32>>().map_err(|_| {
-                    ParameterError::new_err("out must be a float32 numpy array of shape (V, 3)")
+                let mut rw = writable_rows(obj, nv, "out")?;
+                let slice = contiguous(&mut rw, "out")?;
+                guarded(py, move || {
+                    knit.positions_and_normals_into(surf.as_dyn(), slice, normals_slice)
                 })?;
-                if arr.shape() != [nv, 3] {
-                    return Err(ParameterError::new_err(format!(
-                        "out must have shape ({nv}, 3), not {:?}",
-                        arr.shape()
-                    )));
-                }
-                let mut rw = arr.try_readwrite().map_err(|_| {
-                    ParameterError::new_err("out must be writable and not borrowed elsewhere")
-                })?;
-                let slice = rw
-                    .as_slice_mut()
-                    .map_err(|_| ParameterError::new_err("out must be C-contiguous"))?;
-                if !arr.is_c_contiguous() {
-                    return Err(ParameterError::new_err("out must be C-contiguous"));
-                }
-                guarded(py, move || knit.positions_into(surf.as_dyn(), slice))?;
                 Ok(obj.clone().unbind())
             }
         }
     }
 
-    /// `(V, 3)` float32 vertex normals for `surface` in a new pose, bit-identical to
-    /// `build(surface).normals`, of a knit that culls its hidden yarn (a `ParameterError` for
-    /// another: its mesh's own normals are right). With `out`, written there.
+    /// `(V, 3)` float32 unit vertex normals for `surface` in a new pose: the smooth normals
+    /// a renderer computes from the knit's triangles (angle-weighted, as Blender's), and for
+    /// a knit that culls its hidden yarn the whole knit's, bit-identical to
+    /// `build(surface).normals`. With `out`, written there. `positions(surface, out,
+    /// normals_out)` gives both in one pass.
     #[pyo3(signature = (surface, out=None))]
     fn normals(
         &self,
@@ -392,19 +391,25 @@ impl PyKnit {
         let surf = AnySurface::from_py(surface)?;
         let knit = self.inner.clone();
         let nv = knit.vertex_count();
-        let mut normals = crate::output_buffer::zeroed::<f32>(3 * nv);
-        let normals = guarded(py, move || {
-            let mut positions = crate::output_buffer::zeroed::<f32>(3 * nv);
-            knit.positions_and_normals_into(surf.as_dyn(), &mut positions, Some(&mut normals))
-                .map(|_| normals)
-        })?;
+        let mut positions = crate::output_buffer::zeroed::<f32>(3 * nv);
         match out {
-            None => rows(py, normals, 3),
+            None => {
+                let mut normals = crate::output_buffer::zeroed::<f32>(3 * nv);
+                let normals = guarded(py, move || {
+                    knit.positions_and_normals_into(
+                        surf.as_dyn(),
+                        &mut positions,
+                        Some(&mut normals),
+                    )
+                    .map(|_| normals)
+                })?;
+                rows(py, normals, 3)
+            }
             Some(obj) => {
-                let np = py.import("numpy")?;
-                let src = rows(py, normals, 3)?;
-                np.call_method1("copyto", (obj, src)).map_err(|e| {
-                    ParameterError::new_err(format!("out must be a float32 array ({nv}, 3): {e}"))
+                let mut rw = writable_rows(obj, nv, "out")?;
+                let slice = contiguous(&mut rw, "out")?;
+                guarded(py, move || {
+                    knit.positions_and_normals_into(surf.as_dyn(), &mut positions, Some(slice))
                 })?;
                 Ok(obj.clone().unbind())
             }
@@ -465,4 +470,39 @@ impl PyKnit {
         let v: Vec<u8> = levels.iter().map(|l| *l as u8).collect();
         rows(py, v, wales).map(Some)
     }
+}
+
+/// `obj` as a writable float32 `(nv, 3)` array, borrowed for writing; errors name `what`.
+fn writable_rows<'py>(
+    obj: &Bound<'py, PyAny>,
+    nv: usize,
+    what: &str,
+) -> PyResult<PyReadwriteArrayDyn<'py, f32>> {
+    let arr = obj.cast::<PyArrayDyn<f32>>().map_err(|_| {
+        ParameterError::new_err(format!(
+            "{what} must be a float32 numpy array of shape (V, 3)"
+        ))
+    })?;
+    if arr.shape() != [nv, 3] {
+        return Err(ParameterError::new_err(format!(
+            "{what} must have shape ({nv}, 3), not {:?}",
+            arr.shape()
+        )));
+    }
+    if !arr.is_c_contiguous() {
+        return Err(ParameterError::new_err(format!(
+            "{what} must be C-contiguous"
+        )));
+    }
+    arr.try_readwrite().map_err(|_| {
+        ParameterError::new_err(format!(
+            "{what} must be writable and not borrowed elsewhere (nor be another output)"
+        ))
+    })
+}
+
+/// The borrowed array's floats.
+fn contiguous<'a>(rw: &'a mut PyReadwriteArrayDyn<'_, f32>, what: &str) -> PyResult<&'a mut [f32]> {
+    rw.as_slice_mut()
+        .map_err(|_| ParameterError::new_err(format!("{what} must be C-contiguous")))
 }

@@ -52,6 +52,32 @@ def test_the_knit_follows_a_shape_key_with_fixed_topology(api: ModuleType) -> No
     np.testing.assert_array_equal(positions(knit.data), at_rest)
 
 
+def test_a_following_knit_brings_the_normals_blender_would_compute(api: ModuleType) -> None:
+    """Each frame writes the knit's smooth normals with its positions, as custom normals,
+    so that Blender shades with them and skips its own recompute: they are the normals
+    Blender computes from the same triangles, and they move with the yarn."""
+    scene = bpy.context.scene
+    knit = knit_of(api, waving_cloth())
+    mesh = knit.data
+    assert "custom_normal" not in mesh.attributes, "as built, Blender's own normals serve"
+    shaded = {}
+    for frame in (5, 15):
+        scene.frame_set(frame)
+        assert mesh.attributes["custom_normal"].domain == "POINT"
+        ours = np.empty((len(mesh.vertices), 3), np.float32)
+        mesh.vertex_normals.foreach_get("vector", ours.ravel())  # what Blender shades with
+        # Blender's own, from the same positions and triangles.
+        plain = mesh.copy()
+        plain.attributes.remove(plain.attributes["custom_normal"])
+        theirs = np.empty_like(ours)
+        plain.vertex_normals.foreach_get("vector", theirs.ravel())
+        bpy.data.meshes.remove(plain)
+        # To rounding: Blender measures corner angles by another formula (within 0.1 degree).
+        np.testing.assert_allclose(ours, theirs, atol=2e-3)
+        shaded[frame] = ours
+    assert np.abs(shaded[5] - shaded[15]).max() > 0.1, "the normals did not move with the yarn"
+
+
 def test_following_equals_the_knit_bound_at_rest_posed_anew(
     api: ModuleType, addon: ModuleType
 ) -> None:

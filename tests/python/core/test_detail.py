@@ -164,8 +164,60 @@ def test_hidden_yarn_is_culled_with_the_whole_knits_normals_and_can_be_pinned() 
         knitwear.Knit(strip(), pattern, cull_hidden=True)
     with pytest.raises(knitwear.ParameterError, match="another knit"):
         knitwear.Knit(strip(), pattern, camera=cam, seen_triangles=seen[:-1])
-    with pytest.raises(knitwear.ParameterError, match="culls its hidden yarn"):
-        knitwear.Knit(strip(), pattern, camera=cam).normals(strip())
+    # One pass gives both, into the caller's buffers.
+    pos, nrm = np.empty_like(result.vertices), np.empty_like(result.normals)
+    assert again.positions(strip(), out=pos, normals_out=nrm) is pos
+    np.testing.assert_array_equal(pos, result.vertices)
+    np.testing.assert_array_equal(nrm, result.normals)
+    with pytest.raises(knitwear.ParameterError, match="normals_out must have shape"):
+        again.positions(strip(), normals_out=np.empty((3, 3), np.float32))
+    with pytest.raises(knitwear.ParameterError, match="not borrowed elsewhere"):
+        again.positions(strip(), out=pos, normals_out=pos)
+
+
+def smooth_normals(vertices: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+    """A renderer's smooth vertex normals (Blender's): per vertex, the unit normals of its
+    triangles weighted by their angles there, normalised."""
+    p = vertices.astype(np.float64)[triangles]  # (T, 3 corners, 3)
+    n = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    out = np.zeros((len(vertices), 3))
+    for c in range(3):
+        e0 = p[:, (c + 1) % 3] - p[:, c]
+        e1 = p[:, (c + 2) % 3] - p[:, c]
+        e0 /= np.linalg.norm(e0, axis=1, keepdims=True)
+        e1 /= np.linalg.norm(e1, axis=1, keepdims=True)
+        angle = np.arccos(np.clip(np.einsum("ij,ij->i", e0, e1), -1, 1))
+        np.add.at(out, triangles[:, c], n * angle[:, None])
+    return out / np.linalg.norm(out, axis=1, keepdims=True)
+
+
+def test_any_knit_gives_the_normals_its_triangles_give() -> None:
+    """A knit that culls nothing gives its smooth normals too (what an animated knit writes
+    each frame so that Blender need not recompute them): a renderer's, from its triangles,
+    in any pose, with its positions in one pass."""
+    def sheet(bend: float) -> knitwear.GridSurface:
+        """A 6 x 6 cm sheet, arched by ``bend`` metres."""
+        u, v = np.meshgrid(np.linspace(0, 1, 9), np.linspace(0, 1, 9))
+        z = bend * np.sin(np.pi * u)
+        pos = np.stack([0.06 * u, 0.06 * v, z], axis=-1).astype(np.float32)
+        nrm = np.zeros_like(pos)
+        nrm[..., 2] = 1.0
+        return knitwear.GridSurface(pos, nrm)
+
+    pattern = knitwear.Pattern.preset("seed")
+    knit = knitwear.Knit(sheet(0.0), pattern, seed=2, plies=2)
+    for surface in (sheet(0.0), sheet(0.02)):
+        result = knit.build(surface)
+        assert result.normals is None  # the mesh's own normals are right as built
+        normals = knit.normals(surface)
+        np.testing.assert_allclose(
+            normals, smooth_normals(result.vertices, result.triangles), atol=2e-4
+        )
+        pos, nrm = np.empty_like(result.vertices), np.empty_like(normals)
+        knit.positions(surface, out=pos, normals_out=nrm)
+        np.testing.assert_array_equal(pos, result.vertices)
+        np.testing.assert_array_equal(nrm, normals)
 
 
 def test_the_hidden_yarn_pass_is_skipped_under_cull_hidden_min_triangles() -> None:
