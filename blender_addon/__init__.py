@@ -22,7 +22,17 @@ def poll_plush_source(_self: bpy.types.PropertyGroup, obj: bpy.types.Object) -> 
     return obj.type in {"SURFACE", "MESH"}
 
 
-from . import bake, follow, operators, panels, plush, properties, texture, tuning_store  # noqa: E402
+from . import (  # noqa: E402
+    bake,
+    follow,
+    operators,
+    panels,
+    plush,
+    properties,
+    recipe,
+    texture,
+    tuning_store,
+)
 
 _CLASSES: tuple[type, ...] = (
     operators.OBJECT_OT_knitwear_knit,
@@ -39,6 +49,7 @@ def register() -> None:
         bpy.utils.register_class(cls)
     bpy.types.VIEW3D_MT_object.append(operators.draw_object_menu)
     follow.register()
+    recipe.register()
     plush.register()
     texture.register()
     tuning_store.register()
@@ -48,6 +59,7 @@ def unregister() -> None:
     tuning_store.unregister()
     texture.unregister()
     plush.unregister()
+    recipe.unregister()
     follow.unregister()
     bpy.types.VIEW3D_MT_object.remove(operators.draw_object_menu)
     for cls in reversed(_CLASSES):

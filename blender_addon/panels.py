@@ -36,6 +36,7 @@ class VIEW3D_PT_knitwear(bpy.types.Panel):
         layout.use_property_decorate = False
         layout.prop(settings, "source")
         layout.prop(settings, "follow_source")
+        layout.prop(settings, "save_as_recipe")
         draw_settings(layout, settings, "knitwear_panel")
         layout.separator()
         row = layout.row()

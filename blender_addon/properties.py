@@ -334,6 +334,13 @@ class KnitwearSettings(KnitSettingsMixin, bpy.types.PropertyGroup):
         "surface and the mesh topology never changes",
         default=True,
     )
+    save_as_recipe: BoolProperty(
+        name="Save as Recipe",
+        description="Save the knit's source, settings and pins but not its yarn, which is "
+        "rebuilt when the file opens (a much smaller .blend; needs the Knitwear extension to "
+        "show the knit, and rebuilds it in the pose its source has then)",
+        default=False,
+    )
     # Pinned at knit time (and by Update) so that every later pose, and a farm machine that
     # opens the file at any frame, rebuilds exactly this knit's topology and loop shapes.
     bound_counts: IntVectorProperty(
