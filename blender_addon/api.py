@@ -52,6 +52,11 @@ Progress = core_inputs.Progress
 #: warning says so rather than hiding it.
 MIN_CLEARANCE = 0.5
 
+#: The share of stitches more than 15% off the gauge (their width or height against the mean,
+#: where the UV map stretches more or less than on average) above which a knit's report
+#: warns: a knitter sees the gauge change there.
+UNEVEN_SHARE = 0.05
+
 #: Custom property of a knit object: its stitch levels (one byte per stitch, row-major) when
 #: it was knitted with auto detail, pinned so every frame rebuilds the same topology. Stored
 #: packed (`pack_pinned`); read it with `bound_of`.
@@ -106,6 +111,16 @@ class KnitOutcome:
     #: The material of the knitwear texture the source now wears, where stitches were left
     #: to it; None otherwise.
     texture_material: str | None
+    #: How far the stitches' sizes spread round the gauge where the UV map stretches
+    #: (`stats["stitch_spread"]`: "width" and "height" as 5th and 95th percentiles over the
+    #: mean, and the share of "stretched" stitches); None where it was not measured.
+    stitch_spread: dict[str, Any] | None = None
+
+    @property
+    def uneven(self) -> bool:
+        """Whether the UV map stretches enough stitches visibly off the gauge to warn."""
+        spread = self.stitch_spread
+        return spread is not None and spread["stretched"] > UNEVEN_SHARE
 
 
 def settings_from(obj: bpy.types.Object) -> dict[str, Any]:
@@ -415,6 +430,7 @@ def _outcome(
         hidden_pass=stats["hidden_pass"],
         auto_detail=bound.levels is not None,
         texture_material=texture_material,
+        stitch_spread=stats.get("stitch_spread"),
     )
 
 

@@ -76,6 +76,14 @@ def _summary(outcome: api.KnitOutcome) -> str:
             f"{outcome.clamped_stitches:,} stitches flattened: the surface curves more "
             "tightly than the yarn stands off it"
         )
+    if outcome.uneven:
+        spread = outcome.stitch_spread
+        (w0, w1), (h0, h1) = spread["width"], spread["height"]
+        notes.append(
+            f"the UV map stretches {spread['stretched']:.0%} of the stitches more than 15% "
+            f"off the gauge (widths {w0:.2f}-{w1:.2f}, heights {h0:.2f}-{h1:.2f} of it): "
+            "unwrap with less stretch for an even knit"
+        )
     if outcome.flat_clearance < api.MIN_CLEARANCE:
         notes.append(
             f"the yarn is too thick for its stitch: loops overlap (at best "
@@ -88,8 +96,10 @@ def _summary(outcome: api.KnitOutcome) -> str:
 
 
 def _report_level(outcome: api.KnitOutcome) -> set[str]:
-    """A warning where the result is visibly wrong (overlapping loops), else information."""
-    return {"WARNING"} if outcome.flat_clearance < api.MIN_CLEARANCE else {"INFO"}
+    """A warning where the result is visibly wrong (overlapping loops, a gauge the UV map
+    stretches), else information."""
+    wrong = outcome.flat_clearance < api.MIN_CLEARANCE or outcome.uneven
+    return {"WARNING"} if wrong else {"INFO"}
 
 
 def _failure(err: Exception) -> str:

@@ -19,15 +19,52 @@ pub const TIGHT_QUANTILE: f32 = 0.05;
 /// Most stitches measured: beyond, every k-th stitch in row-major order.
 const MAX_MEASURED: usize = 16_384;
 
+/// How far the stitches' sizes on the surface spread round their mean: the UV map's stretch.
+/// One stitch grid covers the whole (u,v) domain, so where the map stretches more than its
+/// mean the stitches grow, and where it stretches less they shrink; the gauge holds only on
+/// average.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StitchSpread {
+    /// The 5th and 95th percentiles of the stitches' widths, over the mean width.
+    pub width: (f32, f32),
+    /// The same of their heights.
+    pub height: (f32, f32),
+    /// The fraction of the stitches whose width or height is more than [`STRETCHED`] off the
+    /// mean.
+    pub stretched: f32,
+}
+
+/// How far off the mean a stitch's width or height may be before it counts as stretched:
+/// beyond it a knitter sees the gauge change.
+pub const STRETCHED: f32 = 0.15;
+
+/// The measures of [`tight_ratios`] and [`StitchSpread`], from one pass over the stitches.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StitchSizes {
+    /// `(tight width / mean width, tight height / mean height)`.
+    pub tight: (f32, f32),
+    /// `None` where no stitch can be measured.
+    pub spread: Option<StitchSpread>,
+}
+
 /// `(tight width / mean width, tight height / mean height)` of the stitches of `lattice` on
-/// `surface`: a stitch's width is the distance on the surface between the midpoints of its
-/// tile's left and right sides, its height between those of its bottom and top. Stitches
-/// with a side off the surface are left out; `(1, 1)` where none can be measured. Depends only
-/// on the arguments (a fixed subset, sorted, summed in order).
+/// `surface` ([`stitch_sizes`]).
 pub fn tight_ratios(surface: &dyn Surface, lattice: &Lattice) -> (f32, f32) {
+    stitch_sizes(surface, lattice).tight
+}
+
+/// The stitches of `lattice` on `surface`, measured: a stitch's width is the distance on the
+/// surface between the midpoints of its tile's left and right sides, its height between
+/// those of its bottom and top. Stitches with a side off the surface are left out; `(1, 1)`
+/// and no spread where none can be measured. Depends only on the arguments (a fixed subset,
+/// sorted, summed in order).
+pub fn stitch_sizes(surface: &dyn Surface, lattice: &Lattice) -> StitchSizes {
     let total = lattice.courses * lattice.wales;
     if total == 0 {
-        return (1.0, 1.0);
+        return StitchSizes {
+            tight: (1.0, 1.0),
+            spread: None,
+        };
     }
     let stride = total.div_ceil(MAX_MEASURED);
     let mut widths = Vec::with_capacity(total / stride + 1);
@@ -49,7 +86,39 @@ pub fn tight_ratios(surface: &dyn Surface, lattice: &Lattice) -> (f32, f32) {
             }
         }
     }
-    (ratio(&mut widths), ratio(&mut heights))
+    let spread = spread(&widths, &heights);
+    StitchSizes {
+        tight: (ratio(&mut widths), ratio(&mut heights)),
+        spread,
+    }
+}
+
+/// The spread of the measured `widths` and `heights` (same length) round their means.
+fn spread(widths: &[f32], heights: &[f32]) -> Option<StitchSpread> {
+    let mean = |v: &[f32]| v.iter().map(|&x| f64::from(x)).sum::<f64>() / v.len() as f64;
+    if widths.is_empty() {
+        return None;
+    }
+    let (mw, mh) = (mean(widths), mean(heights));
+    let relative = |v: &[f32], m: f64| -> Vec<f32> {
+        let mut r: Vec<f32> = v.iter().map(|&x| (f64::from(x) / m) as f32).collect();
+        r.sort_by(f32::total_cmp);
+        r
+    };
+    let (rw, rh) = (relative(widths, mw), relative(heights, mh));
+    let off = |r: f32| (r - 1.0).abs() > STRETCHED;
+    let stretched = widths
+        .iter()
+        .zip(heights)
+        .filter(|&(&w, &h)| off((f64::from(w) / mw) as f32) || off((f64::from(h) / mh) as f32))
+        .count();
+    let at = |r: &[f32], q: f32| r[(q * (r.len() - 1) as f32).round() as usize];
+    let finite = |x: f32| if x.is_finite() { x } else { 1.0 };
+    Some(StitchSpread {
+        width: (finite(at(&rw, 0.05)), finite(at(&rw, 0.95))),
+        height: (finite(at(&rh, 0.05)), finite(at(&rh, 0.95))),
+        stretched: stretched as f32 / widths.len() as f32,
+    })
 }
 
 /// The [`TIGHT_QUANTILE`] of `values` over their mean (1 for none).
@@ -82,6 +151,37 @@ mod tests {
         let lattice = Lattice::regular(plane.domain(), 20, 24, false, false);
         let (w, h) = tight_ratios(&plane, &lattice);
         assert!((w - 1.0).abs() < 1e-5 && (h - 1.0).abs() < 1e-5, "{w} {h}");
+    }
+
+    #[test]
+    fn a_stretched_map_spreads_the_stitches() {
+        // A map whose u runs quadratically: stitches at one end a fifth as wide as at the
+        // other.
+        let (rows, cols) = (3, 65);
+        let (mut p, mut n) = (Vec::new(), Vec::new());
+        for i in 0..rows {
+            for j in 0..cols {
+                let (u, v) = (j as f32 / (cols - 1) as f32, i as f32 / (rows - 1) as f32);
+                p.extend([0.1 * (0.2 * u + 0.8 * u * u), 0.1 * v, 0.0]);
+                n.extend([0.0, 0.0, 1.0]);
+            }
+        }
+        let squeezed = crate::surface::GridSurface::new(rows, cols, &p, &n, false, false).unwrap();
+        let lattice = Lattice::regular(squeezed.domain(), 20, 24, false, false);
+        let s = stitch_sizes(&squeezed, &lattice).spread.unwrap();
+        assert!(s.width.0 < 0.4 && s.width.1 > 1.5, "{s:?}");
+        assert!(
+            (s.height.0 - 1.0).abs() < 1e-3 && (s.height.1 - 1.0).abs() < 1e-3,
+            "{s:?}"
+        );
+        assert!(s.stretched > 0.6, "{s:?}");
+        // An even map: none stretched.
+        let plane = PlaneSurface {
+            width: 0.12,
+            height: 0.1,
+        };
+        let even = Lattice::regular(plane.domain(), 20, 24, false, false);
+        assert_eq!(stitch_sizes(&plane, &even).spread.unwrap().stretched, 0.0);
     }
 
     #[test]

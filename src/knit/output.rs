@@ -25,6 +25,9 @@ pub struct KnitStats {
     /// Stitch width and height measured on the surface (scene units).
     pub stitch_width: f32,
     pub stitch_height: f32,
+    /// How far the stitches' sizes on the surface spread round their mean (the UV map's
+    /// stretch), measured when the stitch size is not pinned; `None` where it is.
+    pub stitch_spread: Option<crate::tight_stitches::StitchSpread>,
     /// Clearance of the tuned offsets on a flat patch, in yarn diameters.
     pub flat_clearance: f32,
     /// Clearance of this result (min, 1st percentile) in diameters, if measured.

@@ -184,6 +184,7 @@ impl PreparedKnit {
                 len_v / (courses as f32 + 2.0 * ROW_OVERHANG)
             },
         );
+        let mut stitch_spread = None;
         let (stitch_width, stitch_height) = match p.stitch_size {
             // A stitch larger than the whole surface knits no fabric: a unit mistake.
             Some((w, h)) if w > len_u || h > len_v => {
@@ -194,10 +195,12 @@ impl PreparedKnit {
             }
             Some(size) => size,
             None => {
-                let (rw, rh) = run_in_pool(p.threads, || {
-                    crate::tight_stitches::tight_ratios(surface, &base)
+                let sizes = run_in_pool(p.threads, || {
+                    crate::tight_stitches::stitch_sizes(surface, &base)
                 })?;
                 crate::cancel::check()?;
+                stitch_spread = sizes.spread;
+                let (rw, rh) = sizes.tight;
                 (mean.0 * rw, mean.1 * rh)
             }
         };
@@ -362,6 +365,7 @@ impl PreparedKnit {
             yarn_pieces: pieces.len(),
             stitch_width,
             stitch_height,
+            stitch_spread,
             flat_clearance,
             topology_key,
             levels: level_counts,

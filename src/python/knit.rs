@@ -69,6 +69,17 @@ pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResul
     stats.set_item("yarn_pieces", s.yarn_pieces)?;
     stats.set_item("stitch_width", s.stitch_width)?;
     stats.set_item("stitch_height", s.stitch_height)?;
+    let spread = match s.stitch_spread {
+        None => None,
+        Some(sp) => {
+            let d = PyDict::new(py);
+            d.set_item("width", sp.width)?;
+            d.set_item("height", sp.height)?;
+            d.set_item("stretched", sp.stretched)?;
+            Some(d)
+        }
+    };
+    stats.set_item("stitch_spread", spread)?;
     stats.set_item("flat_clearance", s.flat_clearance)?;
     stats.set_item("clearance_min", s.clearance.map(|c| c.0))?;
     stats.set_item("clearance_p01", s.clearance.map(|c| c.1))?;

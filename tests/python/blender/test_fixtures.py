@@ -148,3 +148,27 @@ def test_a_yarn_too_thick_for_its_stitch_is_a_warning(api: ModuleType, addon: Mo
     assert thick.flat_clearance < api.MIN_CLEARANCE
     assert "too thick for its stitch" in summary and f"{thick.flat_clearance:.2f}" in summary
     assert addon.operators._report_level(thick) == {"WARNING"}
+
+
+def test_a_uv_map_that_stretches_the_gauge_is_a_warning(api: ModuleType, addon: ModuleType) -> None:
+    """One stitch grid covers the UV map, so where the map stretches more than on average the
+    stitches grow and where less they shrink: the report says how far, and warns."""
+    bpy.ops.mesh.primitive_grid_add(x_subdivisions=16, y_subdivisions=16, size=0.2)
+    source = bpy.context.active_object
+    even, summary = _knit_ok(api, addon, source)
+    assert even.stitch_spread is not None and even.stitch_spread["stretched"] == 0.0
+    assert "stretches" not in summary and addon.operators._report_level(even) == {"INFO"}
+    # The same grid unwrapped with u squared: stitches at one side several times as wide as
+    # at the other. A UV sphere's rows shrink towards its poles too.
+    uv = source.data.uv_layers.active.data
+    co = np.empty(2 * len(uv), np.float32)
+    uv.foreach_get("uv", co)
+    co[0::2] **= 2
+    uv.foreach_set("uv", co)
+    uneven, summary = _knit_ok(api, addon, source)
+    spread = uneven.stitch_spread
+    assert spread["stretched"] > 0.5 and spread["width"][1] / spread["width"][0] > 3, spread
+    assert f"stretches {spread['stretched']:.0%} of the stitches more than 15%" in summary
+    assert addon.operators._report_level(uneven) == {"WARNING"}
+    sphere, summary = _knit_ok(api, addon, uv_mesh())
+    assert sphere.stitch_spread["width"][0] < 0.5 and "the UV map stretches" in summary

@@ -255,3 +255,25 @@ def test_cover_is_exposed_and_grows_with_the_yarn() -> None:
         knitwear.measure_cover(thick, (0.1, 0.0, 0.0, 0.1))
     with pytest.raises(knitwear.ParameterError, match="resolution"):
         knitwear.measure_cover(thick, inner, 0)
+
+
+def test_the_stitch_spread_measures_the_maps_stretch() -> None:
+    """`stats["stitch_spread"]`: the 5th and 95th percentiles of the stitches' widths and
+    heights over their means, and the share more than 15% off; measured where the stitch size
+    is not pinned."""
+    pattern = knitwear.Pattern.preset("stockinette")
+    flat = knitwear.GridSurface(*plane_grid())
+    even = knitwear.knit(flat, pattern, courses=12, wales=12).stats["stitch_spread"]
+    assert even["stretched"] == 0.0
+    assert all(abs(x - 1.0) < 1e-3 for x in (*even["width"], *even["height"]))
+    # u squared along x: stitches at one side far wider than at the other.
+    u, v = np.meshgrid(np.linspace(0, 1, 33), np.linspace(0, 1, 9))
+    pos = np.stack([0.1 * (0.2 * u + 0.8 * u**2), 0.1 * v, 0 * u], -1).astype(np.float32)
+    nrm = np.zeros_like(pos)
+    nrm[..., 2] = 1.0
+    squeezed = knitwear.GridSurface(pos, nrm)
+    spread = knitwear.knit(squeezed, pattern, courses=12, wales=12).stats["stitch_spread"]
+    assert spread["width"][0] < 0.5 < 1.5 < spread["width"][1]
+    assert abs(spread["height"][0] - 1) < 1e-3 and spread["stretched"] > 0.5
+    pinned = knitwear.knit(squeezed, pattern, courses=12, wales=12, stitch_size=(0.008, 0.008))
+    assert pinned.stats["stitch_spread"] is None
