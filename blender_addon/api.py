@@ -80,7 +80,10 @@ class KnitOutcome:
     object: bpy.types.Object
     stitches: int
     triangles: int
+    #: Stitches of the grid not built: in empty UV space between islands, or lost.
     skipped_stitches: int
+    #: Of them, stitches of fabric lost where a UV island ends part-way through a stitch.
+    lost_stitches: int
     #: Stitches whose normal offsets were clamped where the surface curves more tightly than
     #: the yarn stands off it (a thin tube, a sharp crease).
     clamped_stitches: int
@@ -417,6 +420,7 @@ def _outcome(
         stitches=stitches,
         triangles=len(result.triangles),
         skipped_stitches=skipped,
+        lost_stitches=int(stats.get("stitches_lost", 0)),
         clamped_stitches=int(stats.get("stitches_clamped", 0)),
         flat_clearance=float(stats.get("flat_clearance", 0.0)),
         seconds=time.perf_counter() - t_start,

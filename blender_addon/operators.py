@@ -69,8 +69,12 @@ def _summary(outcome: api.KnitOutcome) -> str:
             )
         if outcome.texture_material:
             notes.append(f"the source wears '{outcome.texture_material}' for the texture")
-    if outcome.skipped_stitches:
-        notes.append(f"{outcome.skipped_stitches:,} stitches skipped: outside the UV map")
+    if outcome.lost_stitches:
+        # Stitches in empty UV space between islands were never fabric: not a loss.
+        notes.append(
+            f"{outcome.lost_stitches:,} stitches of fabric lost where UV islands end part-way "
+            "through them"
+        )
     if outcome.clamped_stitches:
         notes.append(
             f"{outcome.clamped_stitches:,} stitches flattened: the surface curves more "

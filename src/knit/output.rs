@@ -14,6 +14,9 @@ pub struct KnitStats {
     pub stitches: usize,
     /// Stitches not built because part of them had no surface (outside every UV island).
     pub stitches_skipped: usize,
+    /// Of `stitches_skipped`, those whose centre is on the surface: fabric lost where a UV
+    /// island ends part-way through a stitch. The rest lie in empty UV space.
+    pub stitches_lost: usize,
     /// Built stitches whose normal offsets were clamped because the surface curves more
     /// tightly there than the offsets reach (a thin tube, a sharp crease; see
     /// [`crate::skeleton::curvature`]). Counted per build (the pose decides it), so 0 in

@@ -246,13 +246,15 @@ impl PreparedKnit {
             samples_per_loop: s,
         };
         // Full-detail pieces first: their triangles are the figure detail is measured against.
-        let (full_pieces, built, built_count) = run_in_pool(p.threads, || {
+        let (full_pieces, built, built_count, lost) = run_in_pool(p.threads, || {
             let built = skeleton.built_stitches(surface);
             let count = built.iter().filter(|b| **b).count();
+            let lost = skeleton.lost_stitches(surface, &built);
             (
                 skeleton.pieces(&built, &built, pattern, float_colors),
                 built,
                 count,
+                lost,
             )
         })?;
         crate::cancel::check()?;
@@ -360,6 +362,7 @@ impl PreparedKnit {
             wales,
             stitches: built_count,
             stitches_skipped: courses * wales - built_count,
+            stitches_lost: lost,
             vertices: total.vertices as usize,
             triangles: total.triangles as usize,
             yarn_pieces: pieces.len(),

@@ -63,6 +63,7 @@ pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResul
     stats.set_item("wales", s.wales)?;
     stats.set_item("stitches", s.stitches)?;
     stats.set_item("stitches_skipped", s.stitches_skipped)?;
+    stats.set_item("stitches_lost", s.stitches_lost)?;
     stats.set_item("stitches_clamped", s.stitches_clamped)?;
     stats.set_item("vertices", s.vertices)?;
     stats.set_item("triangles", s.triangles)?;

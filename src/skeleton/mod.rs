@@ -133,6 +133,24 @@ pub fn built_stitches(surface: &dyn Surface, lattice: &Lattice) -> Vec<bool> {
     built
 }
 
+/// Of the stitches not `built` (row-major), those whose tile centre lies on the surface: fabric
+/// lost where a UV island ends part-way through a stitch (its head reaches into the row above,
+/// a leg past the island's side), unlike a stitch wholly in empty UV space between islands,
+/// which was never fabric.
+pub fn lost_stitches(surface: &dyn Surface, lattice: &Lattice, built: &[bool]) -> usize {
+    let wales = lattice.wales;
+    built
+        .par_chunks(wales.max(1))
+        .enumerate()
+        .map(|(r, row)| {
+            row.iter()
+                .enumerate()
+                .filter(|&(w, &b)| !b && surface.eval(lattice.tile_center(r, w)).is_some())
+                .count()
+        })
+        .sum()
+}
+
 /// Splits every course into pieces of consecutive built stitches.
 pub fn yarn_pieces(lattice: &Lattice, built: &[bool]) -> Vec<YarnPiece> {
     let wales = lattice.wales;

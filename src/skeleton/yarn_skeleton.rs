@@ -129,6 +129,12 @@ impl YarnSkeleton {
         built_stitches(surface, &self.lattice)
     }
 
+    /// Of the stitches not `built`, those that were fabric ([`super::lost_stitches`]). Runs
+    /// in the caller's rayon pool.
+    pub fn lost_stitches(&self, surface: &dyn Surface, built: &[bool]) -> usize {
+        super::lost_stitches(surface, &self.lattice, built)
+    }
+
     /// The pieces of yarn over the stitches `built` (row-major) of a fabric whose stitches
     /// on the surface are `fabric` (`built` may leave some of them out: those a detail level
     /// does not build): each course's, sampled as densely as its loops need, then the balls

@@ -277,3 +277,23 @@ def test_the_stitch_spread_measures_the_maps_stretch() -> None:
     assert abs(spread["height"][0] - 1) < 1e-3 and spread["stretched"] > 0.5
     pinned = knitwear.knit(squeezed, pattern, courses=12, wales=12, stitch_size=(0.008, 0.008))
     assert pinned.stats["stitch_spread"] is None
+
+
+def test_stitches_cut_by_an_islands_edge_are_lost_fabric_not_empty_space() -> None:
+    """Two UV islands with empty UV space between them: the stitches there are skipped, and
+    only those an island's edge cuts through count as lost fabric."""
+    # The islands end at u = 0.415 and 0.585: through the middle of a stitch of 21 wales.
+    pos = np.array(
+        [[0, 0, 0], [0.0415, 0, 0], [0.0415, 0.1, 0], [0, 0.1, 0],
+         [0.0585, 0, 0], [0.1, 0, 0], [0.1, 0.1, 0], [0.0585, 0.1, 0]], np.float32,
+    )
+    nrm = np.tile(np.array([0, 0, 1], np.float32), (8, 1))
+    tris = np.array([[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]], np.int32)
+    uvs = pos[tris][..., :2] / 0.1
+    surface = knitwear.MeshSurface(pos, nrm, tris, uvs.astype(np.float32))
+    pattern = knitwear.Pattern.preset("stockinette")
+    s = knitwear.knit(surface, pattern, courses=20, wales=21).stats
+    assert s["stitches"] + s["stitches_skipped"] == 420
+    # In every course: the stitches wholly in the gap (wales 9 to 11) were never fabric; the
+    # two the islands' edges cut through (wales 8 and 12) were.
+    assert s["stitches_lost"] == 2 * 20 and s["stitches_skipped"] == 5 * 20, s
