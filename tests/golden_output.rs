@@ -2,7 +2,8 @@
 //! the default settings and the add-on's irregularity (kappa 0.005), with live loops (the
 //! fabric alone: recorded before the house was rearranged, "One source per setting", and
 //! unchanged by the cast-on and bind-off since; eyelet rows and the lace diamond re-recorded
-//! when a yarn-over whose decrease the sheet's edge cuts off came to be knitted plain) and
+//! when a yarn-over whose decrease the sheet's edge cuts off came to be knitted plain; all
+//! re-recorded when the bundles' triangles came to lie along the tube, issue 16) and
 //! finished with them (the default). A
 //! refactor that changes one bit of any preset's yarn, colours or topology fails here; so
 //! does a machine or thread count that knits differently from the one that recorded them.
@@ -20,34 +21,34 @@ use common::digest::digest;
 /// (preset, digest with live loops, digest finished): `examples/output_digest.rs`'s output. `fair_isle+band` is the Fair
 /// Isle preset in the `fair_isle_band` colour chart.
 const GOLDEN: &[(&str, u64, u64)] = &[
-    ("stockinette", 0xaffb4933f930e6ad, 0x04e23d0764f9d0ff),
+    ("stockinette", 0x18929ef2ca8f4b4f, 0xae8b79026cf2a16a),
     (
         "reverse_stockinette",
-        0x6476f4c5fe9cf23b,
-        0xdc6e8d27c80adede,
+        0x65298e0dce6aefa7,
+        0x9af5100442a0542c,
     ),
-    ("garter", 0xb1d0347263fe4473, 0x6343c5e7c7dbe21a),
-    ("rib_1x1", 0xb8eb86692f6c8535, 0xba19013070e841fc),
-    ("rib_2x2", 0x9c35a7de37bebe66, 0xbddfcd27365b6291),
-    ("seed", 0x5846a169bb7d5154, 0x62f8c15da4791d77),
-    ("moss", 0x0d58bf4a6d83cfdc, 0x5328a2257b68f3b8),
-    ("basketweave", 0x9d0e3af21725634d, 0x6943afb8073403d9),
-    ("twisted_rib", 0xc2b1796ba892fcf7, 0x83a27ced0870e12a),
-    ("cable_c4", 0x515f80b0b1287013, 0xe069f817a9a0e56e),
-    ("cable_c6", 0xfe9d979665934e9a, 0xd35dff1ca61c9cfb),
-    ("horseshoe_cable", 0x783a325f74e55286, 0x3797403f12021285),
-    ("honeycomb_cable", 0x94610e4c0e348ef9, 0xec57e704a87734ad),
-    ("mock_cable_rib", 0x5c0a5278c8b99f18, 0x6df064414ebd3163),
-    ("twisted_cable_rib", 0xc5eb3cb9ff63bb65, 0x0ec36e3a752cb3aa),
-    ("diamond", 0xcd62ef5ddab3fe95, 0xcdaa97dd4b491024),
-    ("chevron", 0xd325fe2956366fbe, 0xc799c2b9d9b72256),
-    ("feather_and_fan", 0xdf7f82d655682c9e, 0x4d914b896e53d3ff),
-    ("eyelet_rows", 0xc6b7e7c20abe614b, 0x8f03485ccff0d736),
-    ("lace_diamond", 0x9508ae5c13ce63bc, 0x554c278d1cdb1c94),
-    ("bobbles", 0x588c7771c9f2f1d6, 0x622de1fffa94b733),
-    ("linen_stitch", 0x8cf9c905926ffba1, 0xe8c9b44f21b3f2a9),
-    ("fair_isle", 0xaffb4933f930e6ad, 0x04e23d0764f9d0ff),
-    ("fair_isle+band", 0xc32d63cf5fa6b9fe, 0x90662a15cee148d4),
+    ("garter", 0x773f5effc80e4c7b, 0xe4d8f52aeb53d105),
+    ("rib_1x1", 0xe826a40c0f8e3a67, 0x44e222b887d904dc),
+    ("rib_2x2", 0xf7fe5e0ce834594f, 0xf176d4a4f8f02611),
+    ("seed", 0x5cce53a24cbbc578, 0x6a4834f78fc47789),
+    ("moss", 0x131c1646bad705a6, 0xa10cf1ba3db56d01),
+    ("basketweave", 0x4831000a5234c871, 0x4f73bd8569f054ad),
+    ("twisted_rib", 0x05cce965de8046ce, 0xf71dabc52a36275e),
+    ("cable_c4", 0x8931ef46ff8e429e, 0xa1b9911fa940d785),
+    ("cable_c6", 0xf7347a06587c3e97, 0x6c438c0827051180),
+    ("horseshoe_cable", 0x5fce88655748e5e8, 0x97308a1ba51a4154),
+    ("honeycomb_cable", 0x6b4770b5810e7e60, 0x44dde8b8b81d0e3f),
+    ("mock_cable_rib", 0xd26f2d1b1f00bbdb, 0x1bc7cd187254c032),
+    ("twisted_cable_rib", 0xb8e3a72374fe2cad, 0x7d42c7a094fa0eb5),
+    ("diamond", 0xb9dc0c8321e4910b, 0x92932e3de44abcb8),
+    ("chevron", 0x3979033f06ba2b54, 0x1643fb9af98a3583),
+    ("feather_and_fan", 0x5355e5b64ee39b04, 0xdc5dc24e53b3e65c),
+    ("eyelet_rows", 0x5202b59eeae994f5, 0x4973e5fefe26ff8c),
+    ("lace_diamond", 0x7fe8b3500fe8a69f, 0x9033602c20329aaa),
+    ("bobbles", 0xc2c847dcf74f6853, 0x3d3c269405a5f863),
+    ("linen_stitch", 0xe18a7a8221066da3, 0x732f414e2d59fa05),
+    ("fair_isle", 0x18929ef2ca8f4b4f, 0xae8b79026cf2a16a),
+    ("fair_isle+band", 0x42c17efaaaa68d7e, 0x97416ac6d4b8a367),
 ];
 
 #[test]

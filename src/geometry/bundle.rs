@@ -2,10 +2,19 @@
 //!
 //! A ring of `m` points is swept along the centreline (ring `i` around sample `i`). Between
 //! consecutive rings L1, L2 the paper's bundle has `m + n` triangles (here `n = m`): each edge
-//! of L1 with a randomly chosen vertex of L2, and each edge of L2 with a randomly chosen vertex
-//! of L1. The chosen vertex is copied and pushed outward along its ring direction by a random
-//! fraction of `fluffiness * radius`, so each triangle owns its apex: the random apexes make the
-//! fibrous reflectance and the pushes the down around the yarn.
+//! of L1 with an apex towards L2, and each edge of L2 with an apex towards L1. Each triangle
+//! owns its apex, pushed outward along its ring direction by a random fraction of
+//! `fluffiness * radius`: the pushes make the down around the yarn.
+//!
+//! The paper's triangles stand for strands of fibre, "elongated along the direction of the
+//! yarn". An apex picked anywhere on the other ring cuts through the tube (the yarn read as
+//! barbed wire), so here each triangle reaches two ring intervals along the yarn (L1's edges
+//! to the ring after L2, L2's edges to the ring before L1) and its apex leans a random 0 to 1
+//! segment past its edge's end, in the direction the plies turn (at an open end, where there
+//! is no ring beyond, it stops on the end ring without a lean): every strand lies along the tube's surface, slanting with the twist. At fluffiness
+//! 0 the triangles cover the whole tube, with no gap: in (angle, length) on the tube, an
+//! edge's triangle and the triangle of the same edge on the next ring, leaning the other way
+//! within a segment, overlap over the whole interval between them.
 //!
 //! Layout of one yarn piece with `R` rings and `Q` ring pairs (`Q = R - 1` open, `R` closed):
 //! vertices `[R*m ring vertices][Q*2m apex vertices]`, triangles `Q*2m` (pair `q` owns
@@ -35,6 +44,10 @@ use rand_chacha::ChaCha8Rng;
 
 use super::frames::{frame_from_tangent, ring_frame};
 use super::plies::{ply_radius, twist};
+
+/// Apex angles per ring segment: an apex leans up to one segment past its edge's end in
+/// steps of this fraction of a segment.
+const APEX_STEPS: usize = 4;
 
 /// Settings of the swept yarn.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -215,9 +228,8 @@ pub fn build_bundle(
         Some(d) => twist(d.samples[i], settings.samples_per_loop),
         None => twist(i, settings.samples_per_loop),
     };
-    // Ring directions, kept for the apexes, and ring frames for apexes at full-detail angles.
-    let mut dirs = vec![Vec3::ZERO; rings * m];
-    let mut frames = vec![(Vec3::ZERO, Vec3::ZERO); if draws.is_some() { rings } else { 0 }];
+    // Ring frames, kept for the apexes (which sit between ring points).
+    let mut frames = vec![(Vec3::ZERO, Vec3::ZERO); rings];
     for i in 0..rings {
         let tangent = match i {
             0 => ends.first,
@@ -228,13 +240,10 @@ pub fn build_bundle(
             Some(t) => frame_from_tangent(t, normals[i]),
             None => ring_frame(points, normals, i, closed),
         };
-        if let Some(f) = frames.get_mut(i) {
-            *f = (a, b);
-        }
+        frames[i] = (a, b);
         let twist = ply_twist(i);
         for k in 0..m {
             let d = cos[k] * a + sin[k] * b;
-            dirs[i * m + k] = d;
             let rho = ply_radius(settings.plies, TAU * k as f32 / m as f32, twist);
             let p = points[i] + r * rho * d;
             out.positions[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&p.to_array());
@@ -262,13 +271,26 @@ pub fn build_bundle(
     // A span's draws: the full-density stream's colour draws at each ring's sample (`mf`
     // per ring) and the triangle draws of the full-detail ring pairs its pairs start from.
     let mf = draws.map_or(m, |d| d.ring_segments);
-    let (full_cos, full_sin): (Vec<f32>, Vec<f32>) = (0..mf)
-        .map(|k| TAU * k as f32 / mf as f32)
+    // Apex angles: APEX_STEPS per ring segment.
+    let steps = APEX_STEPS * m;
+    let (apex_cos, apex_sin): (Vec<f32>, Vec<f32>) = (0..steps)
+        .map(|q| TAU * q as f32 / steps as f32)
         .map(|a| {
             let (s, c) = crate::portable_math::sin_cos(a);
             (c, s)
         })
         .unzip();
+    // The ring one past `j` along the yarn (`j` itself at an open end), and one before `i`.
+    let after = |j: usize| match (closed, j + 1 < rings) {
+        (true, _) => (j + 1) % rings,
+        (false, true) => j + 1,
+        (false, false) => j,
+    };
+    let before = |i: usize| match (closed, i > 0) {
+        (true, _) => (i + rings - 1) % rings,
+        (false, true) => i - 1,
+        (false, false) => i,
+    };
     // The full-detail ring point at (or just after) this level's point k.
     let full_k = |k: usize| (k * mf + m / 2) / m % mf;
     let mut span_colours = vec![0u32; if draws.is_some() { mf } else { 0 }];
@@ -314,9 +336,18 @@ pub fn build_bundle(
             continue;
         }
         let j = (i + 1) % rings;
-        // Two halves: the edges of ring i with apexes on ring j, then the reverse.
+        // Two halves: the edges of ring i with apexes on the ring after j, then the edges of
+        // ring j with apexes on the ring before i (see the module docs).
         for half in 0..2 {
-            let (edge_ring, apex_ring) = if half == 0 { (i, j) } else { (j, i) };
+            let (edge_ring, near, far) = if half == 0 {
+                (i, j, after(j))
+            } else {
+                (j, i, before(i))
+            };
+            // At an open end (or round a closed piece of two rings) the apex stops at the
+            // near ring, without a lean: one interval leaves no room to lean and stay closed.
+            let reaches = far != near && far != edge_ring;
+            let apex_ring = if reaches { far } else { near };
             for k in 0..m {
                 let tri = i * 2 * m + half * m + k;
                 // One draw per triangle: 16 bits pick the apex, 24 the push, 24 the shade.
@@ -325,16 +356,21 @@ pub fn build_bundle(
                     Some(_) => back_draws[mf + full_k(k)],
                     None => rng.next_u64(),
                 };
-                let pick = (((bits & 0xFFFF) * mf as u64) >> 16) as usize;
-                let push = 1.0 + settings.fluffiness * unit24(bits >> 16);
-                let (apex_dir, apex_angle) = match frames.get(apex_ring) {
-                    // At the full-detail ring angle, in this ring's frame.
-                    Some(&(a, b)) => (
-                        full_cos[pick] * a + full_sin[pick] * b,
-                        TAU * pick as f32 / mf as f32,
-                    ),
-                    None => (dirs[apex_ring * m + pick], TAU * pick as f32 / m as f32),
+                // Up to one segment past the edge's leading end, in the plies' turn: at
+                // [k + 1, k + 2] segments going forward, [k - 1, k] going back.
+                let lean = match reaches {
+                    true => (((bits & 0xFFFF) * (APEX_STEPS as u64 + 1)) >> 16) as usize,
+                    false => 0,
                 };
+                let q = if half == 0 {
+                    ((k + 1) * APEX_STEPS + lean) % steps
+                } else {
+                    (k * APEX_STEPS + steps - lean) % steps
+                };
+                let push = 1.0 + settings.fluffiness * unit24(bits >> 16);
+                let (a, b) = frames[apex_ring];
+                let apex_dir = apex_cos[q] * a + apex_sin[q] * b;
+                let apex_angle = TAU * q as f32 / steps as f32;
                 let rho = ply_radius(settings.plies, apex_angle, ply_twist(apex_ring));
                 let apex = points[apex_ring] + r * push * rho * apex_dir;
                 let av = apex_base + tri;
@@ -498,17 +534,14 @@ mod tests {
         }
     }
 
-    /// A straight yarn along x: every apex must lie on its ring's plane, pushed out between 1
-    /// and 1 + fluffiness radii, and the picks must cover the ring evenly.
-    #[test]
-    fn apexes_are_pushed_within_range_and_picked_evenly() {
-        let (rings, m) = (400usize, 6usize);
+    /// A straight yarn along x (rings at x = 0, 1, 2, ...) of `rings` rings of `m` points.
+    fn straight_tube(rings: usize, m: usize, fluffiness: f32) -> (Vec<f32>, Vec<f32>) {
         let points: Vec<Vec3> = (0..rings).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
         let normals = vec![Vec3::Z; rings];
         let settings = BundleSettings {
             radius: 0.25,
             ring_segments: m,
-            fluffiness: 0.8,
+            fluffiness,
             color_variation: 0.2,
             seed: 9,
             plies: 1,
@@ -530,29 +563,130 @@ mod tests {
             None,
             &mut bufs,
         );
-        let mut hits = vec![0usize; m];
+        (positions, colors)
+    }
+
+    /// A point of the straight tube as (angle round the axis in ring segments from ring
+    /// point 0, in the ring's point order, in [0, m); distance along the axis).
+    fn tube_coordinates(positions: &[f32], m: usize, v: usize) -> (f32, f32) {
+        let angle = |v: usize| positions[3 * v + 2].atan2(positions[3 * v + 1]);
+        let (a0, a1) = (angle(0), angle(1));
+        let turn = if (a1 - a0).rem_euclid(TAU) < std::f32::consts::PI {
+            1.0
+        } else {
+            -1.0
+        };
+        let segments = (turn * (angle(v) - a0)).rem_euclid(TAU) / TAU * m as f32;
+        (segments % m as f32, positions[3 * v])
+    }
+
+    /// Every apex lies on the ring two intervals along the yarn from its edge (the end ring
+    /// at an open end), leans 0 to 1 segment past its edge's end the way the plies turn,
+    /// is pushed out between 1 and 1 + fluffiness radii, and every lean is drawn.
+    #[test]
+    fn apexes_lie_along_the_tube_two_rings_on_leaning_with_the_twist() {
+        let (rings, m) = (400usize, 6usize);
+        let (positions, colors) = straight_tube(rings, m, 0.8);
+        let counts = bundle_counts(rings, m, false);
+        let mut leans = [0usize; APEX_STEPS + 1];
         for tri in 0..counts.triangles {
+            let (pair, half, k) = (tri / (2 * m), tri % (2 * m) / m, tri % m);
+            // The end ring, without a lean, where the yarn ends first.
+            let (want_ring, reaches) = if half == 0 {
+                ((pair + 2).min(rings - 1), pair + 2 < rings)
+            } else {
+                (pair.saturating_sub(1), pair > 0)
+            };
             let av = rings * m + tri;
             let p = Vec3::from_slice(&positions[3 * av..3 * av + 3]);
-            let ring = (p.x.round()) as usize;
             assert!(
-                (p.x - ring as f32).abs() < 1e-5,
-                "apex off its ring's plane"
+                (p.x - want_ring as f32).abs() < 1e-5,
+                "triangle {tri}: apex at x = {}, not on ring {want_ring}",
+                p.x
             );
-            let d = Vec3::new(0.0, p.y, p.z);
-            let push = d.length() / settings.radius;
+            let push = Vec3::new(0.0, p.y, p.z).length() / 0.25;
             assert!((1.0 - 1e-5..=1.8 + 1e-5).contains(&push), "push {push}");
-            let angle = d.z.atan2(d.y).rem_euclid(TAU);
-            hits[((angle / TAU * m as f32).round() as usize) % m] += 1;
+            // Segments past the edge's leading end: k + 1 going forward, k going back.
+            let (angle, _) = tube_coordinates(&positions, m, av);
+            let mut past = if half == 0 {
+                angle - (k + 1) as f32
+            } else {
+                k as f32 - angle
+            }
+            .rem_euclid(m as f32);
+            if past > 0.5 * m as f32 {
+                past -= m as f32;
+            }
+            let lean = past * APEX_STEPS as f32;
+            let most = if reaches { APEX_STEPS as f32 } else { 0.0 };
+            assert!(
+                lean > -1e-3 && lean <= most + 1e-3 && (lean - lean.round()).abs() < 1e-3,
+                "triangle {tri} (half {half}, edge {k}): apex {past} segments past its edge"
+            );
+            if reaches {
+                leans[lean.round() as usize] += 1;
+            }
             let shade = colors[4 * av] / 0.5;
             assert!((0.8 - 1e-6..=1.2 + 1e-6).contains(&shade), "shade {shade}");
         }
-        let expected = counts.triangles as f32 / m as f32;
-        for (k, &h) in hits.iter().enumerate() {
+        let expected = leans.iter().sum::<usize>() as f32 / leans.len() as f32;
+        for (q, &n) in leans.iter().enumerate() {
             assert!(
-                (h as f32 - expected).abs() < 0.1 * expected,
-                "ring vertex {k} picked {h} times, expected about {expected}"
+                (n as f32 - expected).abs() < 0.1 * expected,
+                "lean {q} drawn {n} times, expected about {expected}"
             );
+        }
+    }
+
+    /// At fluffiness 0 the bundle is a closed tube: every point of the tube's surface from
+    /// the first ring to the last, in (angle, length), lies in one of its triangles.
+    #[test]
+    fn fluffiness_zero_leaves_no_gap_in_the_tube() {
+        let (rings, m) = (24usize, 6usize);
+        let (positions, _) = straight_tube(rings, m, 0.0);
+        let counts = bundle_counts(rings, m, false);
+        // Every triangle in (angle, length), its angles unwrapped round its first corner, and
+        // again one turn on (so that a point near angle 0 finds the triangles across it).
+        let mut flat: Vec<[(f32, f32); 3]> = Vec::new();
+        for tri in 0..counts.triangles {
+            let (pair, half, k) = (tri / (2 * m), tri % (2 * m) / m, tri % m);
+            let ring = pair + half;
+            let (a, b) = (ring * m + k, ring * m + (k + 1) % m);
+            let corners = [a, b, rings * m + tri].map(|v| tube_coordinates(&positions, m, v));
+            let first = corners[0].0;
+            let unwrapped = corners.map(|(angle, x)| {
+                let mut angle = angle;
+                while angle - first > 0.5 * m as f32 {
+                    angle -= m as f32;
+                }
+                while first - angle > 0.5 * m as f32 {
+                    angle += m as f32;
+                }
+                (angle, x)
+            });
+            flat.push(unwrapped);
+            flat.push(unwrapped.map(|(angle, x)| (angle + m as f32, x)));
+            flat.push(unwrapped.map(|(angle, x)| (angle - m as f32, x)));
+        }
+        let inside = |t: &[(f32, f32); 3], (px, py): (f32, f32)| {
+            let cross = |(ax, ay): (f32, f32), (bx, by): (f32, f32)| {
+                (bx - ax) * (py - ay) - (by - ay) * (px - ax)
+            };
+            let s = [cross(t[0], t[1]), cross(t[1], t[2]), cross(t[2], t[0])];
+            s.iter().all(|&c| c >= -1e-5) || s.iter().all(|&c| c <= 1e-5)
+        };
+        let (na, nx) = (6 * m * 7, 8 * (rings - 1) * 5);
+        for i in 0..na {
+            for j in 0..=nx {
+                let point = (
+                    (i as f32 + 0.37) / na as f32 * m as f32,
+                    j as f32 / nx as f32 * (rings - 1) as f32,
+                );
+                assert!(
+                    flat.iter().any(|t| inside(t, point)),
+                    "a gap in the tube at {point:?} (segments, rings)"
+                );
+            }
         }
     }
 }
