@@ -14,6 +14,8 @@ Blender convert element by element.
 import bpy
 import numpy as np
 
+from . import blender_compat
+
 #: Name of the point-domain colour attribute holding the yarn colour (the material reads it).
 COLOR_ATTRIBUTE = "Col"
 
@@ -126,10 +128,19 @@ def read_normals(mesh: bpy.types.Mesh) -> np.ndarray | None:
     return normals
 
 
+def shading_normals(result: object) -> np.ndarray | None:
+    """The normals to shade ``result``'s mesh with: a knit's own (the swept tube's, so that
+    its fibre triangles shade as soft yarn, not as facets) where Blender shades with them
+    (4.5 and later); None for a plush, and on 4.2, which computes its own from the
+    triangles."""
+    if not blender_compat.FREE_CUSTOM_NORMALS:
+        return None
+    return getattr(result, "normals", None)
+
+
 def write_normals(mesh: bpy.types.Mesh, normals: np.ndarray | None) -> None:
-    """Give ``mesh`` the knit's own vertex normals (a knit with its hidden yarn culled
-    shades as the whole knit, whose triangles it no longer has), or none (``None``: a knit
-    that culls nothing, or a plush, whose result carries no normals)."""
+    """Give ``mesh`` the knit's own vertex normals as free custom normals (see
+    `shading_normals`), or none (``None``: Blender computes them from the triangles)."""
     attribute = mesh.attributes.get(NORMAL_ATTRIBUTE)
     if normals is None:
         if attribute is not None:
@@ -165,7 +176,7 @@ def _build(name: str, result: object) -> bpy.types.Mesh:
     try:
         _set_colors(mesh, result.colors)
         mesh.shade_smooth()
-        write_normals(mesh, getattr(result, "normals", None))
+        write_normals(mesh, shading_normals(result))
         mesh[TOPOLOGY_PROPERTY] = _topology_key(result)
     except BaseException:
         bpy.data.meshes.remove(mesh)
@@ -204,7 +215,7 @@ def fill_mesh(mesh: bpy.types.Mesh, result: object) -> bpy.types.Mesh:
     """
     if _same_topology(mesh, result):
         _set_colors(mesh, result.colors)
-        write_normals(mesh, getattr(result, "normals", None))
+        write_normals(mesh, shading_normals(result))
         write_positions(mesh, result.vertices)
         return mesh
     name = mesh.name

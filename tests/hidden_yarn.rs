@@ -70,27 +70,6 @@ fn prepare(p: &KnitParams) -> PreparedKnit {
     PreparedKnit::new(&patch(0.08), &stockinette(), p).unwrap()
 }
 
-/// The smooth normals a renderer gives a mesh: at each vertex, the unit normals of its
-/// triangles weighted by their angles there, normalised.
-fn smooth_normals(positions: &[f32], triangles: &[i32]) -> Vec<f32> {
-    let at = |v: i32| Vec3::from_slice(&positions[3 * v as usize..]);
-    let mut sum = vec![Vec3::ZERO; positions.len() / 3];
-    for t in triangles.chunks_exact(3) {
-        let n = (at(t[1]) - at(t[0]))
-            .cross(at(t[2]) - at(t[0]))
-            .normalize_or_zero();
-        for c in 0..3 {
-            let p = at(t[c]);
-            let e0 = (at(t[(c + 1) % 3]) - p).normalize_or_zero();
-            let e1 = (at(t[(c + 2) % 3]) - p).normalize_or_zero();
-            sum[t[c] as usize] += n * e0.dot(e1).clamp(-1.0, 1.0).acos();
-        }
-    }
-    sum.iter()
-        .flat_map(|s| s.try_normalize().unwrap_or(Vec3::Z).to_array())
-        .collect()
-}
-
 /// Each triangle as its three corner positions, bit for bit.
 fn corners(out: &KnitOutput) -> Vec<[u32; 9]> {
     out.triangles
@@ -133,18 +112,18 @@ fn only_seen_triangles_are_built_and_they_are_the_whole_knits_own() {
     // same corners and colours.
     let all = corners(&whole);
     let kept = corners(&out);
-    // The whole knit's normals, as its own per-frame path gives them and as its triangles
-    // give them (Blender's smooth normals, to rounding).
+    // The whole knit's shading normals, as its own per-frame path gives them and as its
+    // build does (the swept tube's: unit, see geometry::bundle's tests).
     let mut whole_positions = vec![0.0; whole.positions.len()];
     let mut whole_normals = vec![0.0; whole.positions.len()];
     whole_knit
         .positions_and_normals_into(&patch(0.08), &mut whole_positions, Some(&mut whole_normals))
         .unwrap();
     assert_eq!(whole_positions, whole.positions);
-    let reference = smooth_normals(&whole.positions, &whole.triangles);
-    for (v, (n, r)) in whole_normals.chunks(3).zip(reference.chunks(3)).enumerate() {
-        let d = Vec3::from_slice(n).distance(Vec3::from_slice(r));
-        assert!(d < 1e-4, "vertex {v}: {n:?}, its triangles give {r:?}");
+    assert_eq!(whole_normals, whole.normals);
+    for (v, n) in whole_normals.chunks(3).enumerate() {
+        let length = Vec3::from_slice(n).length();
+        assert!((length - 1.0).abs() < 1e-5, "vertex {v}: normal {n:?}");
     }
     assert_eq!(out.normals.len(), out.positions.len());
     let mut at = 0;
@@ -156,7 +135,7 @@ fn only_seen_triangles_are_built_and_they_are_the_whole_knits_own() {
             at < all.len(),
             "a culled knit's triangle is not the whole knit's"
         );
-        // Its corners carry the whole knit's smooth normals.
+        // Its corners carry the whole knit's normals.
         for corner in 0..3 {
             let (v, w) = (
                 out.triangles[3 * k + corner] as usize,
@@ -169,10 +148,6 @@ fn only_seen_triangles_are_built_and_they_are_the_whole_knits_own() {
         }
         at += 1;
     }
-    assert!(
-        whole.normals.is_empty(),
-        "a knit that culls nothing keeps its own normals"
-    );
     let bits = culled.seen_triangles().unwrap();
     assert_eq!(bits.len(), w.div_ceil(8));
     let ones: u32 = bits.iter().map(|b| b.count_ones()).sum();

@@ -162,7 +162,7 @@ class KnitResult:
     yarn_course: npt.NDArray[np.int32]  # (Y,), the course (row) each yarn piece belongs to
     yarn_closed: npt.NDArray[np.bool_]  # (Y,), whether each piece closes on itself
     yarn_radius: float
-    normals: npt.NDArray[np.float32] | None  # (V, 3) with cull_hidden: the whole knit's
+    normals: npt.NDArray[np.float32]  # (V, 3) shading normals: the swept tube's
     stats: dict[str, Any]
 
 @final
@@ -220,16 +220,14 @@ class Knit:
     ) -> npt.NDArray[np.float32]:
         """(V, 3) float32 positions for `surface` in a new pose, bit-identical to
         `build(surface).vertices`; written into `out` when given. With `normals_out`, the
-        smooth vertex normals (see `normals`) are written there in the same pass."""
+        shading normals (see `normals`) are written there in the same pass."""
     def normals(
         self,
         surface: GridSurface | MeshSurface,
         out: npt.NDArray[np.float32] | None = None,
     ) -> npt.NDArray[np.float32]:
-        """(V, 3) float32 unit vertex normals for `surface` in a new pose: the smooth normals
-        a renderer computes from the knit's triangles (angle-weighted, as Blender's); for a
-        knit that culls its hidden yarn, the whole knit's, bit-identical to
-        `build(surface).normals`."""
+        """(V, 3) float32 unit shading normals for `surface` in a new pose (the swept
+        tube's, out from the yarn's centreline), bit-identical to `build(surface).normals`."""
     @property
     def vertex_count(self) -> int: ...
     @property

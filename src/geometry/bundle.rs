@@ -32,9 +32,10 @@
 //! A span that keeps only some of its piece's full-density samples (a coarser level of
 //! camera-driven detail) takes its draws from that same full-density stream
 //! ([`FullDensityDraws`]): each of its triangles reuses the draw of the full-detail triangle
-//! that starts at the same sample and ring angle, and its apex keeps that triangle's ring
-//! angle, push and shade. A coarser level is so a subset of the fibres full detail builds, not
-//! a fresh random set, and the image changes only where fibres are dropped.
+//! that starts at the same sample and ring angle, and its apex keeps that triangle's lean
+//! (in the level's own segments), push and shade. A coarser level is so a subset of the
+//! fibres full detail builds, not a fresh random set, and the image changes only where fibres
+//! are dropped.
 
 use std::f32::consts::TAU;
 
@@ -102,6 +103,9 @@ pub struct PieceBuffers<'a> {
     pub positions: &'a mut [f32],
     /// `4 * vertices` floats, linear RGBA.
     pub colors: Option<&'a mut [f32]>,
+    /// `3 * vertices` floats: the shading normals, the swept tube's own (see
+    /// [`build_bundle`]).
+    pub normals: Option<&'a mut [f32]>,
     pub topology: Option<TopologyBuffers<'a>>,
 }
 
@@ -123,6 +127,7 @@ impl<'a> PieceBuffers<'a> {
             edge_base: 0,
             positions,
             colors: None,
+            normals: None,
             topology: None,
         }
     }
@@ -193,6 +198,13 @@ fn ring_draws((seed, slot): (u64, u32), m: usize, colours: &mut [u32], tris: &mu
 
 /// Builds the bundle of one yarn piece into `out`.
 ///
+/// The normals it writes (where `out` takes them) are the swept tube's, not the triangles':
+/// each vertex's unit direction out from its ring's centre in the ring's plane (a ring
+/// point's ring direction, an apex's direction at its angle). The triangles are fibres lying
+/// on that tube, and shading them as the tube (Gouraud shading with the cylinder's normals,
+/// as the paper does) shows their randomness as texture, not as facets. They depend only on
+/// the ring frames, so a culled knit and every frame of an animated one get them alike.
+///
 /// `points`/`normals`: the centreline and the surface normal under each sample; `owner[i]`:
 /// (course, wale) of the stitch that sample `i` belongs to; `color_of(course, wale)`: the
 /// stitch's linear RGB colour; `ends`: tangents for the end rings of a span (see
@@ -244,6 +256,9 @@ pub fn build_bundle(
         let twist = ply_twist(i);
         for k in 0..m {
             let d = cos[k] * a + sin[k] * b;
+            if let Some(n) = out.normals.as_mut() {
+                n[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&d.to_array());
+            }
             let rho = ply_radius(settings.plies, TAU * k as f32 / m as f32, twist);
             let p = points[i] + r * rho * d;
             out.positions[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&p.to_array());
@@ -375,6 +390,9 @@ pub fn build_bundle(
                 let apex = points[apex_ring] + r * push * rho * apex_dir;
                 let av = apex_base + tri;
                 out.positions[3 * av..3 * av + 3].copy_from_slice(&apex.to_array());
+                if let Some(n) = out.normals.as_mut() {
+                    n[3 * av..3 * av + 3].copy_from_slice(&apex_dir.to_array());
+                }
                 let ac = shade(bits >> 40, color);
                 if let Some(colors) = out.colors.as_mut() {
                     colors[4 * av..4 * av + 4].copy_from_slice(&ac);
@@ -536,25 +554,37 @@ mod tests {
 
     /// A straight yarn along x (rings at x = 0, 1, 2, ...) of `rings` rings of `m` points.
     fn straight_tube(rings: usize, m: usize, fluffiness: f32) -> (Vec<f32>, Vec<f32>) {
+        let (positions, colors, _) = plied_tube(rings, m, fluffiness, 1);
+        (positions, colors)
+    }
+
+    /// [`straight_tube`] of `plies` plies: its positions, colours and normals.
+    fn plied_tube(
+        rings: usize,
+        m: usize,
+        fluffiness: f32,
+        plies: usize,
+    ) -> (Vec<f32>, Vec<f32>, Vec<f32>) {
         let points: Vec<Vec3> = (0..rings).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
-        let normals = vec![Vec3::Z; rings];
         let settings = BundleSettings {
             radius: 0.25,
             ring_segments: m,
             fluffiness,
             color_variation: 0.2,
             seed: 9,
-            plies: 1,
+            plies,
             samples_per_loop: 16,
         };
         let counts = bundle_counts(rings, m, false);
         let mut positions = vec![0.0; 3 * counts.vertices];
         let mut colors = vec![0.0; 4 * counts.vertices];
+        let mut normals = vec![0.0; 3 * counts.vertices];
         let mut bufs = PieceBuffers::positions_only(&mut positions);
         bufs.colors = Some(&mut colors);
+        bufs.normals = Some(&mut normals);
         build_bundle(
             &points,
-            &normals,
+            &vec![Vec3::Z; rings],
             &|i| (0, i / 16),
             &|_, _| [0.5, 0.5, 0.5],
             false,
@@ -563,7 +593,7 @@ mod tests {
             None,
             &mut bufs,
         );
-        (positions, colors)
+        (positions, colors, normals)
     }
 
     /// A point of the straight tube as (angle round the axis in ring segments from ring
@@ -687,6 +717,100 @@ mod tests {
                     "a gap in the tube at {point:?} (segments, rings)"
                 );
             }
+        }
+    }
+
+    /// The normals are the tube's: every vertex's, ring point or apex, is the unit direction
+    /// from the centreline straight out to it (a straight yarn along x: `(0, y, z)`
+    /// normalised), with plies and fluff, and the positions do not depend on whether they
+    /// are written.
+    #[test]
+    fn normals_point_straight_out_from_the_centreline() {
+        let (rings, m) = (40usize, 6usize);
+        let (positions, _, normals) = plied_tube(rings, m, 0.8, 3);
+        for v in 0..positions.len() / 3 {
+            let p = Vec3::from_slice(&positions[3 * v..3 * v + 3]);
+            let n = Vec3::from_slice(&normals[3 * v..3 * v + 3]);
+            let out = Vec3::new(0.0, p.y, p.z).normalize();
+            assert!(
+                n.distance(out) < 1e-5,
+                "vertex {v} at {p}: normal {n}, the tube's {out}"
+            );
+        }
+        // The same yarn built without normals (`straight_yarn_of` sweeps it at fluffiness
+        // 0.8 too): writing them leaves the positions as they are.
+        let all: Vec<usize> = (0..rings).collect();
+        assert_eq!(straight_yarn_of(&all, m, None, 3).0, positions);
+    }
+
+    /// Degrees between each triangle's shading normal at its centroid (its corners' normals
+    /// averaged, as Gouraud shading interpolates them) and the round yarn's there (straight
+    /// out from the axis), for the straight tube along x laid out as [`build_bundle`] writes.
+    fn off_round(positions: &[f32], normals: &[f32], rings: usize, m: usize) -> Vec<f32> {
+        let triangles = bundle_counts(rings, m, false).triangles;
+        let at = |buf: &[f32], v: usize| Vec3::from_slice(&buf[3 * v..3 * v + 3]);
+        (0..triangles)
+            .map(|tri| {
+                let (pair, half, k) = (tri / (2 * m), tri % (2 * m) / m, tri % m);
+                let ring = pair + half;
+                let corners = [ring * m + k, ring * m + (k + 1) % m, rings * m + tri];
+                let centroid = corners.iter().map(|&v| at(positions, v)).sum::<Vec3>() / 3.0;
+                let shading = corners.iter().map(|&v| at(normals, v)).sum::<Vec3>();
+                let round = Vec3::new(0.0, centroid.y, centroid.z);
+                shading.angle_between(round).to_degrees()
+            })
+            .collect()
+    }
+
+    /// Blender's smooth normals of the straight tube's triangles: at each vertex the unit
+    /// normals of its triangles weighted by their angles there (an apex has one triangle).
+    fn blender_normals(positions: &[f32], rings: usize, m: usize) -> Vec<f32> {
+        let counts = bundle_counts(rings, m, false);
+        let at = |v: usize| Vec3::from_slice(&positions[3 * v..3 * v + 3]);
+        let mut sum = vec![Vec3::ZERO; counts.vertices];
+        for tri in 0..counts.triangles {
+            let (pair, half, k) = (tri / (2 * m), tri % (2 * m) / m, tri % m);
+            let ring = pair + half;
+            let (a, b) = (ring * m + k, ring * m + (k + 1) % m);
+            let t = if half == 0 {
+                [a, b, rings * m + tri]
+            } else {
+                [b, a, rings * m + tri]
+            };
+            let n = (at(t[1]) - at(t[0])).cross(at(t[2]) - at(t[0])).normalize();
+            for c in 0..3 {
+                let e0 = (at(t[(c + 1) % 3]) - at(t[c])).normalize();
+                let e1 = (at(t[(c + 2) % 3]) - at(t[c])).normalize();
+                sum[t[c]] += n * e0.angle_between(e1);
+            }
+        }
+        sum.iter().flat_map(|s| s.normalize().to_array()).collect()
+    }
+
+    /// The faceting measure: the share of triangles whose shading strays more than 30
+    /// degrees from the round yarn's. With the tube's normals no strand does, at any
+    /// fluffiness; with the normals Blender computes from the same triangles many do, which
+    /// is what read as facets and shards.
+    #[test]
+    fn the_tubes_normals_shade_every_strand_as_a_round_yarn() {
+        let (rings, m) = (200usize, 6usize);
+        let share = |angles: &[f32]| {
+            angles.iter().filter(|&&a| a > 30.0).count() as f32 / angles.len() as f32
+        };
+        for fluffiness in [0.0, 0.5, 1.5] {
+            let (positions, _, normals) = plied_tube(rings, m, fluffiness, 1);
+            let ours = off_round(&positions, &normals, rings, m);
+            let blender = off_round(&positions, &blender_normals(&positions, rings, m), rings, m);
+            let worst = ours.iter().fold(0.0f32, |a, &b| a.max(b));
+            assert!(
+                share(&ours) == 0.0,
+                "fluffiness {fluffiness}: a strand shades {worst} degrees off the round yarn"
+            );
+            assert!(
+                share(&blender) > 0.15,
+                "fluffiness {fluffiness}: Blender's normals stray on {} of the strands",
+                share(&blender)
+            );
         }
     }
 }

@@ -4,7 +4,6 @@ mod bundle;
 mod frames;
 pub mod plies;
 mod subset;
-mod vertex_normals;
 
 pub use bundle::{
     build_bundle, bundle_counts, piece_streams, stitch_seed, BundleCounts, BundleSettings,
@@ -12,4 +11,3 @@ pub use bundle::{
 };
 pub use frames::{frame_from_tangent, ring_frame};
 pub use subset::{MeshSubset, SubsetBuffers};
-pub use vertex_normals::bundle_normals;

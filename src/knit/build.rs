@@ -11,8 +11,8 @@ use super::*;
 use crate::detail::Level;
 use crate::error::{KnitError, Result};
 use crate::geometry::{
-    build_bundle, bundle_normals, piece_streams, stitch_seed, BundleCounts, EndTangents,
-    FullDensityDraws, PieceBuffers, TopologyBuffers,
+    build_bundle, piece_streams, stitch_seed, BundleCounts, EndTangents, FullDensityDraws,
+    PieceBuffers, TopologyBuffers,
 };
 use crate::output_buffer;
 use crate::parallel::{run_in_pool, split_lengths};
@@ -132,10 +132,8 @@ impl PreparedKnit {
     }
 
     /// [`positions_into`](Self::positions_into), and with `normals` (`3 * vertex_count()`
-    /// floats) the smooth vertex normals of the whole knit at its vertices, in the same pass
-    /// (see [`bundle_normals`]): for a knit with its hidden yarn culled, the normals
-    /// [`build`](Self::build) gives it; for any other, the ones a renderer would compute from
-    /// its triangles, given so that it need not.
+    /// floats) the shading normals [`build`](Self::build) gives for that pose (the swept
+    /// tube's: see [`crate::geometry::build_bundle`]), in the same pass.
     pub fn positions_and_normals_into(
         &self,
         surface: &dyn Surface,
@@ -201,41 +199,9 @@ impl PreparedKnit {
                     return;
                 }
                 let mut bufs = PieceBuffers::positions_only(positions);
+                bufs.normals = normals;
                 self.bundle_span(k, centrelines, &mut bufs);
-                if let Some(normals) = normals {
-                    // While the span's positions are still in cache.
-                    self.span_normals(k, bufs.positions, normals);
-                }
             });
-    }
-
-    /// Every span's smooth vertex normals, from the whole mesh's `positions`.
-    fn whole_normals(&self, positions: &[f32]) -> Vec<f32> {
-        let mut normals = output_buffer::zeroed(positions.len());
-        let lengths = self.span_lengths(3);
-        let starts: Vec<usize> = lengths
-            .iter()
-            .scan(0, |at, &len| {
-                let start = *at;
-                *at += len;
-                Some(start)
-            })
-            .collect();
-        split_lengths(&mut normals, &lengths)
-            .into_par_iter()
-            .enumerate()
-            .for_each(|(k, out)| {
-                let p = &positions[starts[k]..starts[k] + out.len()];
-                self.span_normals(k, p, out);
-            });
-        normals
-    }
-
-    /// Span `k`'s smooth vertex normals from its `positions` (see [`bundle_normals`]).
-    fn span_normals(&self, k: usize, positions: &[f32], out: &mut [f32]) {
-        let sp = self.spans[k];
-        let m = self.level_bundle[sp.level as usize].ring_segments;
-        bundle_normals(positions, sp.rings, m, sp.closed, out);
     }
 
     /// Floats per span in a per-vertex buffer of `width` floats per vertex.
@@ -363,9 +329,8 @@ impl PreparedKnit {
             None => self.bundles(&centrelines),
         };
         if let Some(h) = &self.hidden {
-            let whole = self.whole_normals(&out.positions);
             let mut normals = output_buffer::zeroed(3 * h.subset.vertex_count());
-            h.subset.gather_vectors(&whole, &mut normals);
+            h.subset.gather_vectors(&out.normals, &mut normals);
             out.normals = normals;
             let b = h.subset.apply(
                 &out.positions,
@@ -391,6 +356,7 @@ impl PreparedKnit {
         let ne = self.total.edges as usize;
         let mut out = KnitOutput {
             positions: output_buffer::zeroed(3 * nv),
+            normals: output_buffer::zeroed(3 * nv),
             colors: output_buffer::zeroed(4 * nv),
             triangles: output_buffer::zeroed(3 * nt),
             corner_edges: output_buffer::zeroed(3 * nt),
@@ -412,18 +378,23 @@ impl PreparedKnit {
             self.counts.iter().map(f).collect()
         };
         let pos = split_lengths(&mut out.positions, &lengths(&|c| 3 * c.vertices));
+        let nrm = split_lengths(&mut out.normals, &lengths(&|c| 3 * c.vertices));
         let col = split_lengths(&mut out.colors, &lengths(&|c| 4 * c.vertices));
         let tri = split_lengths(&mut out.triangles, &lengths(&|c| 3 * c.triangles));
         let ced = split_lengths(&mut out.corner_edges, &lengths(&|c| 3 * c.triangles));
         let edg = split_lengths(&mut out.edges, &lengths(&|c| 2 * c.edges));
         pos.into_par_iter()
+            .zip(nrm)
             .zip(col)
             .zip(tri)
             .zip(ced)
             .zip(edg)
             .enumerate()
             .for_each(
-                |(i, ((((positions, colors), corner_verts), corner_edges), edge_verts))| {
+                |(
+                    i,
+                    (((((positions, normals), colors), corner_verts), corner_edges), edge_verts),
+                )| {
                     if crate::cancel::requested() {
                         return;
                     }
@@ -432,6 +403,7 @@ impl PreparedKnit {
                         edge_base: ebase[i],
                         positions,
                         colors: Some(colors),
+                        normals: Some(normals),
                         topology: Some(TopologyBuffers {
                             corner_verts,
                             corner_edges,

@@ -92,9 +92,10 @@ pub struct KnitOutput {
     pub yarn_course: Vec<i32>,
     /// `(Y,)` whether each yarn piece is closed (a whole course round a cyclic-u surface).
     pub yarn_closed: Vec<bool>,
-    /// `(V, 3)` unit vertex normals of the knit with its hidden yarn culled: the whole
-    /// knit's smooth normals (Blender's: angle-weighted face normals), which the culled
-    /// mesh's own triangles no longer give. Empty without `cull_hidden`.
+    /// `(V, 3)` unit shading normals: the swept tube's, out from the yarn's centreline at
+    /// each vertex (see [`crate::geometry::build_bundle`]), for a renderer to shade with in
+    /// place of the normals the fibre triangles give. A knit with its hidden yarn culled
+    /// has the whole knit's at the vertices it keeps.
     pub normals: Vec<f32>,
     pub yarn_radius: f32,
     pub stats: KnitStats,

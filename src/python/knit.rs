@@ -34,10 +34,10 @@ pub struct PyKnitResult {
     pub(crate) yarn_closed: Py<PyAny>,
     #[pyo3(get)]
     pub(crate) yarn_radius: f32,
-    /// `(V, 3)` vertex normals of a knit that culls its hidden yarn (the whole knit's smooth
-    /// normals), else None.
+    /// `(V, 3)` unit shading normals: the swept tube's, out from the yarn's centreline (a
+    /// knit that culls its hidden yarn: the whole knit's, at the vertices it keeps).
     #[pyo3(get)]
-    pub(crate) normals: Option<Py<PyAny>>,
+    pub(crate) normals: Py<PyAny>,
     #[pyo3(get)]
     pub(crate) stats: Py<PyDict>,
 }
@@ -98,13 +98,8 @@ pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResul
     stats.set_item("hidden_pass", s.hidden_pass)?;
     stats.set_item("hidden_pass_seconds", s.hidden_pass_seconds)?;
     let yarn_radius = out.yarn_radius;
-    let normals = if out.normals.is_empty() {
-        None
-    } else {
-        Some(rows(py, out.normals, 3)?)
-    };
     Ok(PyKnitResult {
-        normals,
+        normals: rows(py, out.normals, 3)?,
         vertices: rows(py, out.positions, 3)?,
         triangles: rows(py, out.triangles, 3)?,
         edges: rows(py, out.edges, 2)?,
@@ -348,8 +343,8 @@ impl PyKnit {
     /// Vertex positions only, `(V, 3)` float32, for `surface` in a new pose: bit-identical
     /// to `build(surface).vertices`. With `out` (a writable C-contiguous float32 `(V, 3)`
     /// array) they are written there and `out` is returned: no allocation per frame. With
-    /// `normals_out` (another such array) the knit's smooth vertex normals are written there
-    /// too, in the same pass (see `normals`).
+    /// `normals_out` (another such array) the knit's shading normals are written there too,
+    /// in the same pass (see `normals`).
     #[pyo3(signature = (surface, out=None, normals_out=None))]
     fn positions(
         &self,
@@ -388,10 +383,8 @@ impl PyKnit {
         }
     }
 
-    /// `(V, 3)` float32 unit vertex normals for `surface` in a new pose: the smooth normals
-    /// a renderer computes from the knit's triangles (angle-weighted, as Blender's), and for
-    /// a knit that culls its hidden yarn the whole knit's, bit-identical to
-    /// `build(surface).normals`. With `out`, written there. `positions(surface, out,
+    /// `(V, 3)` float32 unit shading normals for `surface` in a new pose (the swept tube's,
+    /// out from the yarn's centreline), bit-identical to `build(surface).normals`. With `out`, written there. `positions(surface, out,
     /// normals_out)` gives both in one pass.
     #[pyo3(signature = (surface, out=None))]
     fn normals(

@@ -130,7 +130,7 @@ def test_hidden_yarn_is_culled_with_the_whole_knits_normals_and_can_be_pinned() 
     pattern = knitwear.Pattern.preset("stockinette")
     cam = receding_camera()
     whole = knitwear.knit(strip(), pattern, camera=cam, seed=3)
-    assert whole.normals is None and whole.stats["triangles_hidden"] == 0
+    assert whole.stats["triangles_hidden"] == 0
     knit = knitwear.Knit(strip(), pattern, camera=cam, seed=3, cull_hidden=True)
     result = knit.build(strip())
     s = result.stats
@@ -175,45 +175,54 @@ def test_hidden_yarn_is_culled_with_the_whole_knits_normals_and_can_be_pinned() 
         again.positions(strip(), out=pos, normals_out=pos)
 
 
-def smooth_normals(vertices: np.ndarray, triangles: np.ndarray) -> np.ndarray:
-    """A renderer's smooth vertex normals (Blender's): per vertex, the unit normals of its
-    triangles weighted by their angles there, normalised."""
-    p = vertices.astype(np.float64)[triangles]  # (T, 3 corners, 3)
-    n = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
-    out = np.zeros((len(vertices), 3))
-    for c in range(3):
-        e0 = p[:, (c + 1) % 3] - p[:, c]
-        e1 = p[:, (c + 2) % 3] - p[:, c]
-        e0 /= np.linalg.norm(e0, axis=1, keepdims=True)
-        e1 /= np.linalg.norm(e1, axis=1, keepdims=True)
-        angle = np.arccos(np.clip(np.einsum("ij,ij->i", e0, e1), -1, 1))
-        np.add.at(out, triangles[:, c], n * angle[:, None])
-    return out / np.linalg.norm(out, axis=1, keepdims=True)
+def miss_of_the_centreline(result: knitwear.KnitResult, normals: np.ndarray) -> np.ndarray:
+    """Per vertex ``p`` with normal ``n``: how far the centreline passes from the segment
+    from ``p - 0.3 r n`` to ``p - 2 r n`` (``r`` the yarn radius), the nearest sample's
+    distance. The tube's normal points straight out from the vertex's own ring centre, a
+    centreline sample between 0.5 and 1 + fluffiness radii back along it: 0 to rounding."""
+    points = result.centerline_points.astype(np.float64)
+    r = result.yarn_radius
+    out = np.empty(len(normals))
+    for start in range(0, len(out), 512):
+        p = result.vertices[start : start + 512].astype(np.float64)
+        n = normals[start : start + 512].astype(np.float64)
+        a, b = p - 0.3 * r * n, p - 2.0 * r * n
+        ab = b - a  # (k, 3)
+        ac = points[None, :, :] - a[:, None, :]  # (k, S, 3)
+        t = np.clip(np.einsum("kj,ksj->ks", ab, ac) / np.einsum("kj,kj->k", ab, ab)[:, None], 0, 1)
+        d = np.linalg.norm(ac - t[..., None] * ab[:, None, :], axis=2)
+        out[start : start + 512] = d.min(axis=1)
+    return out
 
 
-def test_any_knit_gives_the_normals_its_triangles_give() -> None:
-    """A knit that culls nothing gives its smooth normals too (what an animated knit writes
-    each frame so that Blender need not recompute them): a renderer's, from its triangles,
-    in any pose, with its positions in one pass."""
+def test_any_knit_gives_the_swept_tubes_normals() -> None:
+    """Every knit gives its shading normals (what the add-on writes as custom normals, and
+    an animated knit each frame): the swept tube's, out from the yarn's centreline through
+    each vertex, in any pose, with its positions in one pass."""
     def sheet(bend: float) -> knitwear.GridSurface:
-        """A 6 x 6 cm sheet, arched by ``bend`` metres."""
+        """A 3 x 3 cm sheet, arched by ``bend`` metres."""
         u, v = np.meshgrid(np.linspace(0, 1, 9), np.linspace(0, 1, 9))
         z = bend * np.sin(np.pi * u)
-        pos = np.stack([0.06 * u, 0.06 * v, z], axis=-1).astype(np.float32)
+        pos = np.stack([0.03 * u, 0.03 * v, z], axis=-1).astype(np.float32)
         nrm = np.zeros_like(pos)
         nrm[..., 2] = 1.0
         return knitwear.GridSurface(pos, nrm)
 
     pattern = knitwear.Pattern.preset("seed")
     knit = knitwear.Knit(sheet(0.0), pattern, seed=2, plies=2)
-    for surface in (sheet(0.0), sheet(0.02)):
+    for surface in (sheet(0.0), sheet(0.01)):
         result = knit.build(surface)
-        assert result.normals is None  # the mesh's own normals are right as built
         normals = knit.normals(surface)
-        np.testing.assert_allclose(
-            normals, smooth_normals(result.vertices, result.triangles), atol=2e-4
-        )
+        np.testing.assert_array_equal(normals, result.normals)
+        np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-5)
+        # Straight out from the yarn: back along each normal lies a centreline sample.
+        miss = miss_of_the_centreline(result, normals)
+        assert miss.max() < 1e-3 * result.yarn_radius, miss.max() / result.yarn_radius
+        # (Any other direction misses: turned by a tenth of a radian, the segment passes
+        # the sample a tenth of a radius or more away.)
+        turned = np.roll(normals, 1, axis=1) * 0.1 + normals
+        turned /= np.linalg.norm(turned, axis=1, keepdims=True)
+        assert np.median(miss_of_the_centreline(result, turned)) > 0.02 * result.yarn_radius
         pos, nrm = np.empty_like(result.vertices), np.empty_like(normals)
         knit.positions(surface, out=pos, normals_out=nrm)
         np.testing.assert_array_equal(pos, result.vertices)
@@ -237,7 +246,8 @@ def test_the_hidden_yarn_pass_is_skipped_under_cull_hidden_min_triangles() -> No
     )
     result = skipped.build(strip())
     assert result.stats["hidden_pass"] is False and result.stats["triangles_hidden"] == 0
-    assert skipped.seen_triangles is None and result.normals is None
+    assert skipped.seen_triangles is None
+    np.testing.assert_array_equal(result.normals, whole.normals)
     np.testing.assert_array_equal(result.vertices, whole.vertices)
     np.testing.assert_array_equal(result.triangles, whole.triangles)
     pinned = knitwear.Knit(
