@@ -37,6 +37,10 @@ fn params(courses: usize, wales: usize) -> PileParams {
 /// on (a mix of horizontal and vertical slices).
 const SIDE_EYE: Vec3 = Vec3::new(0.05, 0.30, 0.15);
 
+/// An eye close above the pile, from which the piles' ratios `2 r |cos a| / (l sin a)` run
+/// from under to over the band where slice kinds mix (1 to 2).
+const BAND_EYE: Vec3 = Vec3::new(0.05, 0.10, 0.10);
+
 fn side_eye() -> View {
     View::Perspective { eye: SIDE_EYE }
 }
@@ -208,31 +212,45 @@ fn pile_directions_stay_within_theta_max_of_the_nominal_direction() {
     assert!(largest > 0.1);
 }
 
-/// The criterion, recomputed from scratch: horizontal iff 2 r |cos a| >= l sin a.
-fn expect_horizontal(root: Vec3, t: Vec3, eye: Vec3, r: f32, l: f32) -> bool {
+/// The criterion, recomputed from scratch: horizontal iff 2 r |cos a| >= k l sin a, with
+/// `k = 1 + blend` the pile's threshold across the band (ratios 1 to 2) where the kinds mix.
+fn expect_horizontal(root: Vec3, t: Vec3, eye: Vec3, r: f32, l: f32, blend: f32) -> bool {
     let to_eye = (eye - root).normalize();
     let alpha = t.dot(to_eye).clamp(-1.0, 1.0).acos();
-    2.0 * r * alpha.cos().abs() >= l * alpha.sin()
+    2.0 * r * alpha.cos().abs() >= (1.0 + blend) * l * alpha.sin()
 }
 
 #[test]
 fn slice_choice_matches_the_criterion_for_every_pile() {
-    let eye = SIDE_EYE;
+    let eye = BAND_EYE;
     let out = plush(&plane(), &params(40, 50), &View::Perspective { eye }).unwrap();
     let (field, b) = (&out.field, &out.buffers);
     let (r, l) = (field.pile_radius, field.slice_spacing());
     let s = field.slices;
     let mut disagree = 0;
+    // [vertical, horizontal] counts of piles under the band, in it and over it.
+    let mut kinds = [[0usize; 2]; 3];
     for (i, pile) in field.piles.iter().enumerate() {
-        let want = expect_horizontal(pile.root, pile.t, eye, r, l);
+        assert!((0.0..1.0).contains(&pile.blend));
+        let want = expect_horizontal(pile.root, pile.t, eye, r, l, pile.blend);
         // Only a pile within rounding of the boundary may go either way.
         let to_eye = (eye - pile.root).normalize();
         let a = pile.t.dot(to_eye).acos();
-        let margin = (2.0 * r * a.cos().abs() - l * a.sin()).abs();
+        let k = 1.0 + pile.blend;
+        let margin = (2.0 * r * a.cos().abs() - k * l * a.sin()).abs();
         if (b.horizontal[i] == 1) != want {
             assert!(margin < 1e-6, "pile {i}: margin {margin}");
             disagree += 1;
         }
+        let ratio = 2.0 * r * a.cos().abs() / (l * a.sin());
+        let bin = if ratio < 1.0 {
+            0
+        } else if ratio < 2.0 {
+            1
+        } else {
+            2
+        };
+        kinds[bin][b.horizontal[i] as usize] += 1;
         // The geometry is the chosen kind.
         let corners = |q: usize| -> [Vec3; 4] {
             let v = 4 * (i * s + q);
@@ -269,9 +287,17 @@ fn slice_choice_matches_the_criterion_for_every_pile() {
         b.stats.vertical,
         field.piles.len()
     );
+    println!("[vertical, horizontal] under, in and over the band: {kinds:?}");
     assert!(
         h > 0 && b.stats.vertical > 0,
         "the camera should see both kinds"
+    );
+    // Under the band never horizontal (it would show gaps), over it always; in it, both.
+    assert_eq!(kinds[0][1], 0);
+    assert_eq!(kinds[2][0], 0);
+    assert!(
+        kinds[1][0] > 50 && kinds[1][1] > 50,
+        "the band mixes the kinds: {kinds:?}"
     );
     assert_eq!(h + b.stats.vertical, field.piles.len());
     assert_eq!(h, b.horizontal.iter().filter(|x| **x == 1).count());
@@ -354,6 +380,56 @@ fn counts_match_the_closed_forms() {
         let c = &out.buffers.colors;
         assert!(slices == 1 || c[0] < c[16 * (slices - 1)]);
     }
+}
+
+/// Each root lies at random within its own cell of the pile grid (no rows or columns for a
+/// renderer to draw as a grid), and the piles' thresholds across the slice band cover `[0, 1)`
+/// evenly, so the change of slice kind is spread over the band rather than drawn as a line.
+#[test]
+fn roots_stray_within_their_cells_and_blends_cover_the_band() {
+    let (courses, wales) = (40, 50);
+    let out = plush(&plane(), &params(courses, wales), &side_eye()).unwrap();
+    let field = &out.field;
+    assert_eq!(field.root_uvs.len(), courses * wales);
+    let mut offsets = Vec::new();
+    for (idx, uv) in field.root_uvs.iter().enumerate() {
+        let (i, j) = (idx / wales, idx % wales);
+        // Offset from the cell's centre, in cells.
+        let du = uv.x * wales as f32 - (j as f32 + 0.5);
+        let dv = uv.y * courses as f32 - (i as f32 + 0.5);
+        assert!(
+            du.abs() <= 0.5 + 1e-4 && dv.abs() <= 0.5 + 1e-4,
+            "pile {idx}: {du}, {dv}"
+        );
+        offsets.push((du as f64, dv as f64));
+    }
+    // Uniform over the cell each way: standard deviation 1 / sqrt(12) = 0.289, and the
+    // two ways independent of each other and of the neighbour's.
+    let n = offsets.len() as f64;
+    let sd = |f: &dyn Fn(&(f64, f64)) -> f64| {
+        (offsets.iter().map(|o| f(o).powi(2)).sum::<f64>() / n).sqrt()
+    };
+    let (sd_u, sd_v) = (sd(&|o| o.0), sd(&|o| o.1));
+    let cross = offsets.iter().map(|o| o.0 * o.1).sum::<f64>() / n / (sd_u * sd_v);
+    let next = offsets.windows(2).map(|w| w[0].0 * w[1].0).sum::<f64>() / n / (sd_u * sd_u);
+    println!("root offsets: sd {sd_u:.3} x {sd_v:.3} cells, correlation {cross:.3}, with the neighbour {next:.3}");
+    for s in [sd_u, sd_v] {
+        assert!((s - 0.289).abs() < 0.02, "offset spread {s}");
+    }
+    assert!(cross.abs() < 0.1 && next.abs() < 0.1);
+    let blends: Vec<f64> = field.piles.iter().map(|p| p.blend as f64).collect();
+    assert!(blends.iter().all(|b| (0.0..1.0).contains(b)));
+    let d = ks(blends, |x| x.clamp(0.0, 1.0));
+    println!("blend KS statistic {d:.4} over {} piles", field.piles.len());
+    assert!(d < 0.04);
+
+    // Another seed, other places; the same seed, the same ones.
+    let again = plush(&plane(), &params(courses, wales), &side_eye()).unwrap();
+    assert_eq!(again.field.root_uvs, field.root_uvs);
+    let mut other = params(courses, wales);
+    other.seed = 8;
+    let moved = plush(&plane(), &other, &side_eye()).unwrap();
+    assert_ne!(moved.field.root_uvs, field.root_uvs);
 }
 
 #[test]

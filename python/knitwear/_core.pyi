@@ -376,6 +376,9 @@ class PlushField:
     def normals(self) -> npt.NDArray[np.float32]:
         """(P, 3) unit surface normals at the roots."""
     @property
+    def blends(self) -> npt.NDArray[np.float32]:
+        """(P,) each pile's place in [0, 1) across the band where slices change kind."""
+    @property
     def root_uvs(self) -> npt.NDArray[np.float32]:
         """(P, 2) (u,v) of the roots."""
     @property

@@ -273,9 +273,14 @@ impl PileField {
             let noise = fractal_noise(&noise_params)?;
             let cell = Vec2::new(1.0 / cols as f32, 1.0 / rows as f32);
             let h = 0.25 * cell * dsize;
+            let shift = dither_shift(p.seed);
             let pile = |idx: usize| -> Option<(PileGeometry, [f32; 3], Vec2)> {
                 let (i, j) = (idx / cols, idx % cols);
-                let st = Vec2::new((j as f32 + 0.5) * cell.x, (i as f32 + 0.5) * cell.y);
+                let draws = pile_draws(p.seed, i, j);
+                let st = Vec2::new(
+                    (j as f32 + 0.5 + ROOT_JITTER * (draws.x - 0.5)) * cell.x,
+                    (i as f32 + 0.5 + ROOT_JITTER * (draws.y - 0.5)) * cell.y,
+                );
                 let uv = domain.min + st * dsize;
                 let sp = surface.eval(uv)?;
                 let (a, b) = fabric_frame(surface, uv, sp.position, sp.normal, h);
@@ -299,6 +304,7 @@ impl PileField {
                     b,
                     normal: sp.normal,
                     t: dir,
+                    blend: dither_threshold(i, j, shift),
                 };
                 Some((geometry, color, uv))
             };
@@ -504,6 +510,40 @@ impl PileField {
         })?;
         Ok((n_h, self.piles.len() - n_h))
     }
+}
+
+/// How far a root strays from its cell's centre, as a share of the cell along u and v: anywhere
+/// in its cell (stratified sampling). Roots on an exact grid line up into rows and columns that
+/// EEVEE draws as a regular grid across the pile; real plush has none. A uniform offset over the
+/// whole cell cancels the grid's frequency and its harmonics exactly (a narrower one, 0.7 of
+/// a cell, left a tenth of the grid's spectral peak).
+const ROOT_JITTER: f32 = 1.0;
+
+/// Mixed into the seed so a pile's draws differ from the noise texel's at the same `(i, j)`.
+const PILE_SALT: u64 = 0x7069_6C65_5F72_6F6F; // "pile_roo"
+
+/// Roberts' R2 sequence's steps (the plastic number's inverse powers): the most evenly spread
+/// two-dimensional low-discrepancy lattice.
+const R2_STEPS: (f64, f64) = (0.754_877_666_246_692_7, 0.569_840_290_998_053_2);
+
+/// Pile `(i, j)`'s threshold across the slice band, in `[0, 1)`: the R2 sequence over the pile
+/// grid, shifted by `shift` (one draw per seed, so seeds differ while every shift keeps R2's
+/// even spread). In f64 so that a large grid keeps the fraction's low bits.
+fn dither_threshold(i: usize, j: usize, shift: f64) -> f32 {
+    (i as f64 * R2_STEPS.0 + j as f64 * R2_STEPS.1 + shift).fract() as f32
+}
+
+/// Pile `(row i, column j)`'s place in its cell, each way in `[0, 1)` (24 bits), from the seed
+/// and its grid cell alone.
+fn pile_draws(seed: u64, i: usize, j: usize) -> Vec2 {
+    let h = crate::rng::cell_seed(seed ^ PILE_SALT, i, j);
+    let unit = |bits: u64| (bits & 0xFF_FFFF) as f32 / (1u64 << 24) as f32;
+    Vec2::new(unit(h >> 40), unit(h >> 16))
+}
+
+/// The seed's shift of the dither thresholds, in `[0, 1)` (53 bits).
+fn dither_shift(seed: u64) -> f64 {
+    (crate::rng::mix64(seed ^ PILE_SALT) >> 11) as f64 / (1u64 << 53) as f64
 }
 
 /// See [`PileStats::topology_key`]: the project's SplitMix64 mix of the two numbers that fix

@@ -3,8 +3,9 @@
 //!
 //! Two steps, so that following a camera is cheap:
 //!
-//! 1. [`PileField::new`] samples the surface once: pile roots on a grid of `courses x wales`
-//!    stitches with `piles_per_stitch` piles each, the fabric frame at each root, the pile
+//! 1. [`PileField::new`] samples the surface once: pile roots in the cells of a grid of
+//!    `courses x wales` stitches with `piles_per_stitch` piles each (each root placed at random
+//!    within its cell, so the pile shows no rows), the fabric frame at each root, the pile
 //!    direction (nominal lean, [`fractal_noise`] rotated into the fabric frame, bent by an
 //!    optional [`press`] map) and the pile colour.
 //! 2. [`PileField::build`] turns the field into mesh buffers for a [`View`] ([`slices`]:
@@ -77,7 +78,7 @@ pub const BYTES_PER_TRIANGLE: u64 = 24;
 pub const BYTES_PER_EDGE: u64 = 8;
 /// Bytes per pile held while building: the field's geometry and colour, the staging copy and
 /// the per-pile slice choice.
-pub const BYTES_PER_PILE: u64 = 2 * 72 + 1;
+pub const BYTES_PER_PILE: u64 = 2 * 76 + 1;
 /// Bytes per noise texel: base and fractal noise.
 pub const BYTES_PER_TEXEL: u64 = 24;
 

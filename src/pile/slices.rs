@@ -10,6 +10,19 @@
 //! projected length does not change sign, and a pile seen from behind the fabric, nearly along
 //! its axis, has no gaps either.
 //!
+//! **A band, not a line.** Applied as it stands, the criterion flips every pile at the same
+//! angle, and where the angle sweeps smoothly across a frame (a close-up, the edge of a press)
+//! the two kinds meet along a hard line: they differ in brightness (a horizontal stack shows
+//! its light tips, a vertical one the darker roots along its side). So each pile carries its
+//! own threshold `blend` in `[0, 1)` and takes horizontal slices only while
+//! `2 r |cos alpha| >= (1 + (BLEND_BAND - 1) blend) l sin alpha`: at a ratio under 1 every
+//! pile is vertical (horizontal would leave gaps), above [`BLEND_BAND`] every pile is
+//! horizontal, and in between a growing share is, so the change reads as a gradient. The band
+//! lies wholly on the side where vertical slices are gap-free too, so the blend costs no
+//! cover. The thresholds are an ordered dither (Roberts' R2 sequence over the pile grid,
+//! shifted per seed), not white noise: white noise clumps the minority kind into dark
+//! specks, R2 spreads it evenly like a halftone.
+//!
 //! **Horizontal slices** (formula (3)): quad `i` (`0 <= i < S`) is centred on the pile axis at
 //! `Pc = root + (i + 1/2) l t`, parallel to the fabric's tangent plane: corners
 //! `Pc -/+ r a -/+ r b` with `a`, `b` the fabric frame's course and wale directions. UVs span
@@ -51,6 +64,13 @@ pub const TIP_SHADE: f32 = 1.15;
 /// Mask value per vertex: horizontal slices carry a round mask, vertical ones a rectangle.
 pub const MASK_ROUND: f32 = 0.0;
 pub const MASK_RECT: f32 = 1.0;
+
+/// Width of the band over which piles change kind, as a ratio of the criterion's two sides
+/// (see the module doc): from `2 r |cos alpha| = l sin alpha` to twice that. At the default
+/// plush (`2 r / l` = 2.9) that is from 71 degrees off the pile's axis down to 55. Wide enough
+/// that in the palm print's close-up the change spreads over about 60 px of 1024; a band of
+/// 4 spread dark vertical piles over most of the unpressed cushion.
+pub const BLEND_BAND: f32 = 2.0;
 
 /// Where the pile is seen from. Coordinates in the surface's object space (scene units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -100,9 +120,16 @@ impl View {
 /// pile radius and `l` the slice spacing.
 #[inline]
 pub fn horizontal_for(t: Vec3, to_viewer: Vec3, radius: f32, spacing: f32) -> bool {
+    horizontal_blended(t, to_viewer, radius, spacing, 0.0)
+}
+
+/// [`horizontal_for`] with the pile's place `blend` in `[0, 1)` across the [`BLEND_BAND`]:
+/// horizontal when `2 r |cos alpha| >= (1 + (BLEND_BAND - 1) blend) l sin alpha`.
+#[inline]
+pub fn horizontal_blended(t: Vec3, to_viewer: Vec3, radius: f32, spacing: f32, blend: f32) -> bool {
     let c = t.dot(to_viewer).clamp(-1.0, 1.0);
     let s = (1.0 - c * c).max(0.0).sqrt();
-    2.0 * radius * c.abs() >= spacing * s
+    2.0 * radius * c.abs() >= (1.0 + (BLEND_BAND - 1.0) * blend) * spacing * s
 }
 
 /// Element counts of `piles` piles with `slices` quads each (closed forms).
@@ -197,6 +224,9 @@ pub struct PileGeometry {
     pub normal: Vec3,
     /// Unit pile direction.
     pub t: Vec3,
+    /// The pile's place across the [`BLEND_BAND`], in `[0, 1)`: drawn once per pile from the
+    /// seed and its grid cell, so it never changes with the view.
+    pub blend: f32,
 }
 
 /// Writes one pile's `S` quads for `view`: positions `(12S)` and mask `(4S)`. Returns whether
@@ -210,7 +240,7 @@ pub fn write_pile(
     mask: &mut [f32],
 ) -> bool {
     let l = view.toward_viewer(p.root, p.normal);
-    let horizontal = horizontal_for(p.t, l, radius, spacing);
+    let horizontal = horizontal_blended(p.t, l, radius, spacing, p.blend);
     let step = p.t * spacing;
     if horizontal {
         let (ra, rb) = (p.a * radius, p.b * radius);

@@ -288,6 +288,12 @@ impl PyPlushField {
         let v = self.inner.piles.iter().flat_map(|p| p.normal.to_array());
         rows(py, v.collect(), 3)
     }
+    /// `(P,)` float32 each pile's threshold in `[0, 1)` across the band where slices change kind:
+    /// horizontal when `2 r |cos a| >= (1 + blend) l sin a`.
+    #[getter]
+    fn blends(&self, py: Python<'_>) -> Py<PyAny> {
+        flat(py, self.inner.piles.iter().map(|p| p.blend).collect())
+    }
     /// `(P, 2)` float32 (u,v) of the roots.
     #[getter]
     fn root_uvs(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {

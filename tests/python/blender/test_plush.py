@@ -194,13 +194,15 @@ def test_errors_report_and_change_nothing(
 
 
 def expected_horizontal(field: Any, eye: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The criterion, recomputed: horizontal iff 2 r |cos a| >= l sin a, with a the angle
-    between the pile and the ray from its root to the eye; and the margin of each pile."""
+    """The criterion, recomputed: horizontal iff 2 r |cos a| >= (1 + b) l sin a, with a the
+    angle between the pile and the ray from its root to the eye and b the pile's threshold
+    across the band where the kinds mix; and the margin of each pile."""
     ray = eye[None, :] - field.roots
     ray /= np.linalg.norm(ray, axis=1, keepdims=True)
     cos_a = np.abs(np.sum(ray * field.directions, axis=1))
     sin_a = np.sqrt(np.clip(1.0 - cos_a**2, 0.0, 1.0))
-    margin = 2 * field.pile_radius * cos_a - field.pile_length / field.slices * sin_a
+    band = 1.0 + field.blends
+    margin = 2 * field.pile_radius * cos_a - band * field.pile_length / field.slices * sin_a
     return margin >= 0, margin
 
 
@@ -249,11 +251,15 @@ def test_the_plush_follows_the_camera_with_fixed_topology(plush: ModuleType) -> 
     scene.frame_set(1)
     from_above, mask_above = positions(obj.data), mask_of(obj.data)
     assert not np.array_equal(from_above, at_start), "frame 1 moved the camera: new view"
-    assert mask_above.max() == 0.0, "seen from above every pile has horizontal slices"
+    # From above most piles are over the band where slice kinds mix (at 4 slices a pile
+    # leaning 40 degrees is in it); side-on most are under it.
+    print(f"vertical share from above {mask_above.mean():.3f}", end=" ")
+    assert mask_above.mean() < 0.3, "seen from above most piles have horizontal slices"
     scene.frame_set(10)
     side_on = positions(obj.data)
     assert not np.array_equal(side_on, from_above)
-    assert mask_of(obj.data).max() == 1.0, "seen side-on some piles turn vertical"
+    print(f"side-on {mask_of(obj.data).mean():.3f}")
+    assert mask_of(obj.data).mean() > 0.5, "seen side-on most piles turn vertical"
     np.testing.assert_array_equal(corner_verts(obj.data), triangles)
     assert obj.data["knitwear_topology"] == topology
     assert len(obj.data.vertices) == len(at_start)
