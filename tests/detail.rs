@@ -185,12 +185,18 @@ fn spans_meet_on_one_centreline_point_in_one_plane() {
         let start = out.yarn_offsets[a.piece] as usize;
         let centre = pts[start + b.first];
         let (ra, rb) = (ring(k - 1, a.rings - 1), ring(k, 0));
-        for q in ra.iter().chain(&rb) {
-            let d = (*q - centre).length();
-            assert!(
-                (d - out.yarn_radius).abs() < 1e-5,
-                "ring point {d} from the centre"
-            );
+        // Each ring at its level's radius: the yarn's at full detail, wider at coarser levels
+        // (they keep the knit's cover), so a level change is a step, never a gap.
+        for (r, level) in [(&ra, a.level), (&rb, b.level)] {
+            let want = prepared.ring_radius(level);
+            assert!(want >= out.yarn_radius);
+            for q in r.iter() {
+                let d = (*q - centre).length();
+                assert!(
+                    (d - want).abs() < 1e-5,
+                    "ring point {d} from the centre, not {want}"
+                );
+            }
         }
         let (na, nb) = (plane_normal(&ra, centre), plane_normal(&rb, centre));
         assert!(

@@ -33,7 +33,7 @@
 //! camera-driven detail) takes its draws from that same full-density stream
 //! ([`FullDensityDraws`]): each of its triangles reuses the draw of the full-detail triangle
 //! that starts at the same sample and ring angle, and its apex keeps that triangle's lean
-//! (in the level's own segments), push and shade. A coarser level is so a subset of the
+//! (the same angle round the yarn, in full-detail segments), push and shade. A coarser level is so a subset of the
 //! fibres full detail builds, not a fresh random set, and the image changes only where fibres
 //! are dropped.
 
@@ -68,6 +68,11 @@ pub struct BundleSettings {
     /// Full-density samples per stitch loop of the piece: the plies' twist is counted in
     /// them.
     pub samples_per_loop: usize,
+    /// Whether a fibre triangle reaches past the next ring to the one after it (full
+    /// sampling) or stops at the next ring (a coarser level). A coarser level's rings are
+    /// already two or three of full detail's apart: a strand over two of its intervals would
+    /// span a third of a loop's turn, cut across the loop and shade as a back face.
+    pub two_intervals: bool,
 }
 
 /// Element counts of one piece's bundle (closed form, for preallocation and budgets).
@@ -361,7 +366,7 @@ pub fn build_bundle(
             };
             // At an open end (or round a closed piece of two rings) the apex stops at the
             // near ring, without a lean: one interval leaves no room to lean and stay closed.
-            let reaches = far != near && far != edge_ring;
+            let reaches = settings.two_intervals && far != near && far != edge_ring;
             let apex_ring = if reaches { far } else { near };
             for k in 0..m {
                 let tri = i * 2 * m + half * m + k;
@@ -377,15 +382,29 @@ pub fn build_bundle(
                     true => (((bits & 0xFFFF) * (APEX_STEPS as u64 + 1)) >> 16) as usize,
                     false => 0,
                 };
-                let q = if half == 0 {
-                    ((k + 1) * APEX_STEPS + lean) % steps
-                } else {
-                    (k * APEX_STEPS + steps - lean) % steps
-                };
                 let push = 1.0 + settings.fluffiness * unit24(bits >> 16);
                 let (a, b) = frames[apex_ring];
-                let apex_dir = apex_cos[q] * a + apex_sin[q] * b;
-                let apex_angle = TAU * q as f32 / steps as f32;
+                let (apex_cos_sin, apex_angle) = if m == mf {
+                    let q = if half == 0 {
+                        ((k + 1) * APEX_STEPS + lean) % steps
+                    } else {
+                        (k * APEX_STEPS + steps - lean) % steps
+                    };
+                    ((apex_cos[q], apex_sin[q]), TAU * q as f32 / steps as f32)
+                } else {
+                    // A coarser level leans as far round the yarn as full detail does (in
+                    // full-detail segments): leaning by its own, wider segments would send
+                    // the strand through the tube, where it shades as a back face.
+                    let turn = lean as f32 / (APEX_STEPS * mf) as f32;
+                    let angle = if half == 0 {
+                        TAU * ((k + 1) as f32 / m as f32 + turn)
+                    } else {
+                        TAU * (k as f32 / m as f32 - turn)
+                    };
+                    let (sin, cos) = crate::portable_math::sin_cos(angle);
+                    ((cos, sin), angle)
+                };
+                let apex_dir = apex_cos_sin.0 * a + apex_cos_sin.1 * b;
                 let rho = ply_radius(settings.plies, apex_angle, ply_twist(apex_ring));
                 let apex = points[apex_ring] + r * push * rho * apex_dir;
                 let av = apex_base + tri;
@@ -459,6 +478,7 @@ mod tests {
             seed: 9,
             plies,
             samples_per_loop: 16,
+            two_intervals: true,
         };
         let counts = bundle_counts(samples.len(), m, false);
         let mut positions = vec![0.0; 3 * counts.vertices];
@@ -574,6 +594,7 @@ mod tests {
             seed: 9,
             plies,
             samples_per_loop: 16,
+            two_intervals: true,
         };
         let counts = bundle_counts(rings, m, false);
         let mut positions = vec![0.0; 3 * counts.vertices];

@@ -244,6 +244,7 @@ impl PreparedKnit {
             seed: p.seed,
             plies: p.plies,
             samples_per_loop: s,
+            two_intervals: true,
         };
         // Full-detail pieces first: their triangles are the figure detail is measured against.
         let (full_pieces, built, built_count, lost) = run_in_pool(p.threads, || {
@@ -310,9 +311,17 @@ impl PreparedKnit {
                 .detail
                 .as_ref()
                 .map_or(full, |d| d.level_settings(level, full));
+            // Full detail keeps its radius to the bit; coarser levels widen theirs to keep
+            // the knit's cover (and so its colour) as it changes level.
+            let radius = match level {
+                Level::Full => bundle.radius,
+                _ => bundle.radius * q.cover_radius_scale(&full),
+            };
             BundleSettings {
+                radius,
                 ring_segments: q.ring_segments,
                 fluffiness: q.fluffiness,
+                two_intervals: q.samples_per_loop == full.samples_per_loop,
                 ..bundle
             }
         });
@@ -452,6 +461,12 @@ impl PreparedKnit {
     /// Ring segments of a built level.
     pub fn ring_segments(&self, level: Level) -> usize {
         self.level_bundle[(level as usize).min(2)].ring_segments
+    }
+
+    /// Yarn radius of a built level, scene units: the yarn's at full detail, widened at
+    /// coarser levels to keep the knit's cover ([`LevelSettings::cover_radius_scale`]).
+    pub fn ring_radius(&self, level: Level) -> f32 {
+        self.level_bundle[(level as usize).min(2)].radius
     }
 
     /// The settings this knit was prepared with.
