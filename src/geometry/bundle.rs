@@ -11,10 +11,11 @@
 //! barbed wire), so here each triangle reaches two ring intervals along the yarn (L1's edges
 //! to the ring after L2, L2's edges to the ring before L1) and its apex leans a random 0 to 1
 //! segment past its edge's end, in the direction the plies turn (at an open end, where there
-//! is no ring beyond, it stops on the end ring without a lean): every strand lies along the tube's surface, slanting with the twist. At fluffiness
-//! 0 the triangles cover the whole tube, with no gap: in (angle, length) on the tube, an
-//! edge's triangle and the triangle of the same edge on the next ring, leaning the other way
-//! within a segment, overlap over the whole interval between them.
+//! is no ring beyond, it stops on the end ring without a lean): every strand lies along the
+//! tube's surface, slanting with the twist. At fluffiness 0 the triangles cover the whole
+//! tube, with no gap: in (angle, length) on the tube, an edge's triangle and the triangle of
+//! the same edge on the next ring, leaning the other way within a segment, overlap over the
+//! whole interval between them.
 //!
 //! Layout of one yarn piece with `R` rings and `Q` ring pairs (`Q = R - 1` open, `R` closed):
 //! vertices `[R*m ring vertices][Q*2m apex vertices]`, triangles `Q*2m` (pair `q` owns
@@ -33,9 +34,11 @@
 //! camera-driven detail) takes its draws from that same full-density stream
 //! ([`FullDensityDraws`]): each of its triangles reuses the draw of the full-detail triangle
 //! that starts at the same sample and ring angle, and its apex keeps that triangle's lean
-//! (the same angle round the yarn, in full-detail segments), push and shade. A coarser level is so a subset of the
-//! fibres full detail builds, not a fresh random set, and the image changes only where fibres
-//! are dropped.
+//! (the same angle round the yarn, in full-detail segments), push and shade. A coarser level
+//! is so a subset of the fibres full detail builds, not a fresh random set, and the image
+//! changes only where fibres are dropped. A coarser sampling's fibres reach only the next
+//! ring ([`BundleSettings::two_intervals`]): its rings are already as far apart as two or
+//! three of full detail's, and a strand over two of them would cut across the loop.
 
 use std::f32::consts::TAU;
 
