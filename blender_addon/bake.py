@@ -96,6 +96,7 @@ def bake_animation(
     # The knit's own positions (what it shows outside the baked range) stay as they were.
     rest = mesh_build.read_positions(mesh)
     rest_normals = mesh_build.read_normals(mesh)
+    rest_tangents = mesh_build.read_tangents(mesh)
     matrix_before = obj.matrix_world.copy()
     following = obj.knitwear.follow_source
     # The handler would follow too on each frame_set: the bake follows once, itself.
@@ -121,6 +122,7 @@ def bake_animation(
         scene.frame_set(frame_before)
         mesh_build.write_positions(mesh, rest)
         mesh_build.write_normals(mesh, rest_normals)
+        mesh_build.write_tangents(mesh, rest_tangents)
         obj.matrix_world = matrix_before
         obj.knitwear.follow_source = following
         if isinstance(err, OSError):
@@ -143,9 +145,12 @@ def bake_animation(
     mesh_build.write_positions(mesh, rest)
     # The cache moves the vertices and carries no normals: a knit that culls nothing shades
     # with the ones Blender computes from them, not with those of the frame it stood at.
-    # (A culled knit keeps its own, which only the extension can move.)
+    # (A culled knit keeps its own, which only the extension can move.) Nor does it carry
+    # fibre directions: the rest pose's would point the highlight wrong as the yarn turns, so
+    # a baked knit's is round (the material's anisotropy needs the attribute), culled or not.
     culled = obj.get(api.SEEN_PROPERTY) is not None
     mesh_build.write_normals(mesh, rest_normals if culled else None)
+    mesh_build.write_tangents(mesh, None)
     scene.frame_set(frame_before)
     return path
 

@@ -7,9 +7,14 @@ not in the material, which is why one material serves every palette.
 
 import bpy
 
-from .mesh_build import COLOR_ATTRIBUTE
+from .mesh_build import COLOR_ATTRIBUTE, TANGENT_ATTRIBUTE
 
 MATERIAL_NAME = "Knitwear Yarn"
+
+#: How much the highlight stretches across the fibres (the Principled BSDF's Anisotropic,
+#: with the fibres' direction as its tangent): fibres are thin cylinders, whose highlight
+#: is a band across them.
+FIBRE_ANISOTROPY = 0.8
 
 
 def _build(material: bpy.types.Material) -> None:
@@ -39,6 +44,26 @@ def _build(material: bpy.types.Material) -> None:
 
     links.new(color.outputs["Color"], bsdf.inputs["Base Color"])
     links.new(bsdf.outputs["BSDF"], output.inputs["Surface"])
+
+    # The fibres' direction (the core's tangents, slanted with the twist) draws the highlight
+    # along each strand. A mesh without them (a baked knit, a user's own mesh) reads a zero
+    # vector: its length switches the anisotropy off, leaving a round highlight.
+    fibre = nodes.new("ShaderNodeAttribute")
+    fibre.location = (-600, -300)
+    fibre.attribute_type = "GEOMETRY"
+    fibre.attribute_name = TANGENT_ATTRIBUTE
+    present = nodes.new("ShaderNodeVectorMath")
+    present.location = (-400, -450)
+    present.operation = "LENGTH"
+    anisotropy = nodes.new("ShaderNodeMath")
+    anisotropy.location = (-200, -450)
+    anisotropy.operation = "MULTIPLY"
+    anisotropy.use_clamp = True
+    anisotropy.inputs[1].default_value = FIBRE_ANISOTROPY
+    links.new(fibre.outputs["Vector"], bsdf.inputs["Tangent"])
+    links.new(fibre.outputs["Vector"], present.inputs[0])
+    links.new(present.outputs["Value"], anisotropy.inputs[0])
+    links.new(anisotropy.outputs["Value"], bsdf.inputs["Anisotropic"])
 
     # Solid/Workbench "Material" colour and the material preview swatch: a neutral wool tone.
     material.diffuse_color = (0.6, 0.55, 0.5, 1.0)

@@ -118,14 +118,34 @@ def _set_colors(mesh: bpy.types.Mesh, colors: np.ndarray) -> None:
 NORMAL_ATTRIBUTE = "custom_normal"
 
 
-def read_normals(mesh: bpy.types.Mesh) -> np.ndarray | None:
-    """``mesh``'s free custom normals, (V, 3) float32, or None where it has none."""
-    attribute = mesh.attributes.get(NORMAL_ATTRIBUTE)
+def _read_vectors(mesh: bpy.types.Mesh, name: str) -> np.ndarray | None:
+    """``mesh``'s point-domain float vector attribute ``name``, (V, 3) float32, or None."""
+    attribute = mesh.attributes.get(name)
     if attribute is None or attribute.data_type != "FLOAT_VECTOR" or attribute.domain != "POINT":
         return None
-    normals = np.empty((len(mesh.vertices), 3), dtype=np.float32)
-    attribute.data.foreach_get("vector", normals.ravel())
-    return normals
+    vectors = np.empty((len(mesh.vertices), 3), dtype=np.float32)
+    attribute.data.foreach_get("vector", vectors.ravel())
+    return vectors
+
+
+def _write_vectors(mesh: bpy.types.Mesh, name: str, vectors: np.ndarray | None) -> None:
+    """Set ``mesh``'s point-domain float vector attribute ``name`` to ``vectors`` (made if
+    missing or of another kind), or remove it (``None``)."""
+    attribute = mesh.attributes.get(name)
+    if vectors is None:
+        if attribute is not None:
+            mesh.attributes.remove(attribute)
+        return
+    if attribute is None or attribute.data_type != "FLOAT_VECTOR" or attribute.domain != "POINT":
+        if attribute is not None:
+            mesh.attributes.remove(attribute)
+        attribute = mesh.attributes.new(name, "FLOAT_VECTOR", "POINT")
+    attribute.data.foreach_set("vector", _f32(vectors))
+
+
+def read_normals(mesh: bpy.types.Mesh) -> np.ndarray | None:
+    """``mesh``'s free custom normals, (V, 3) float32, or None where it has none."""
+    return _read_vectors(mesh, NORMAL_ATTRIBUTE)
 
 
 def shading_normals(result: object) -> np.ndarray | None:
@@ -141,16 +161,23 @@ def shading_normals(result: object) -> np.ndarray | None:
 def write_normals(mesh: bpy.types.Mesh, normals: np.ndarray | None) -> None:
     """Give ``mesh`` the knit's own vertex normals as free custom normals (see
     `shading_normals`), or none (``None``: Blender computes them from the triangles)."""
-    attribute = mesh.attributes.get(NORMAL_ATTRIBUTE)
-    if normals is None:
-        if attribute is not None:
-            mesh.attributes.remove(attribute)
-        return
-    if attribute is None or attribute.data_type != "FLOAT_VECTOR" or attribute.domain != "POINT":
-        if attribute is not None:
-            mesh.attributes.remove(attribute)
-        attribute = mesh.attributes.new(NORMAL_ATTRIBUTE, "FLOAT_VECTOR", "POINT")
-    attribute.data.foreach_set("vector", _f32(normals))
+    _write_vectors(mesh, NORMAL_ATTRIBUTE, normals)
+
+
+#: The fibres' directions at each vertex (`KnitResult.tangents`): a float vector per vertex
+#: that the yarn material reads as the tangent of its anisotropic highlight.
+TANGENT_ATTRIBUTE = "yarn_tangent"
+
+
+def read_tangents(mesh: bpy.types.Mesh) -> np.ndarray | None:
+    """``mesh``'s fibre directions, (V, 3) float32, or None where it has none."""
+    return _read_vectors(mesh, TANGENT_ATTRIBUTE)
+
+
+def write_tangents(mesh: bpy.types.Mesh, tangents: np.ndarray | None) -> None:
+    """Give ``mesh`` the knit's fibre directions (`TANGENT_ATTRIBUTE`), or none (``None``:
+    the yarn material's highlight is then round, not drawn along the fibres)."""
+    _write_vectors(mesh, TANGENT_ATTRIBUTE, tangents)
 
 
 def _topology_key(result: object) -> str:
@@ -177,6 +204,7 @@ def _build(name: str, result: object) -> bpy.types.Mesh:
         _set_colors(mesh, result.colors)
         mesh.shade_smooth()
         write_normals(mesh, shading_normals(result))
+        write_tangents(mesh, getattr(result, "tangents", None))
         mesh[TOPOLOGY_PROPERTY] = _topology_key(result)
     except BaseException:
         bpy.data.meshes.remove(mesh)
@@ -216,6 +244,7 @@ def fill_mesh(mesh: bpy.types.Mesh, result: object) -> bpy.types.Mesh:
     if _same_topology(mesh, result):
         _set_colors(mesh, result.colors)
         write_normals(mesh, shading_normals(result))
+        write_tangents(mesh, getattr(result, "tangents", None))
         write_positions(mesh, result.vertices)
         return mesh
     name = mesh.name

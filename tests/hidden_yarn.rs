@@ -117,7 +117,12 @@ fn only_seen_triangles_are_built_and_they_are_the_whole_knits_own() {
     let mut whole_positions = vec![0.0; whole.positions.len()];
     let mut whole_normals = vec![0.0; whole.positions.len()];
     whole_knit
-        .positions_and_normals_into(&patch(0.08), &mut whole_positions, Some(&mut whole_normals))
+        .positions_and_shading_into(
+            &patch(0.08),
+            &mut whole_positions,
+            Some(&mut whole_normals),
+            None,
+        )
         .unwrap();
     assert_eq!(whole_positions, whole.positions);
     assert_eq!(whole_normals, whole.normals);
@@ -135,7 +140,7 @@ fn only_seen_triangles_are_built_and_they_are_the_whole_knits_own() {
             at < all.len(),
             "a culled knit's triangle is not the whole knit's"
         );
-        // Its corners carry the whole knit's normals.
+        // Its corners carry the whole knit's normals and fibre directions.
         for corner in 0..3 {
             let (v, w) = (
                 out.triangles[3 * k + corner] as usize,
@@ -144,6 +149,10 @@ fn only_seen_triangles_are_built_and_they_are_the_whole_knits_own() {
             assert_eq!(
                 out.normals[3 * v..3 * v + 3],
                 whole_normals[3 * w..3 * w + 3]
+            );
+            assert_eq!(
+                out.tangents[3 * v..3 * v + 3],
+                whole.tangents[3 * w..3 * w + 3]
             );
         }
         at += 1;
@@ -213,9 +222,11 @@ fn culling_is_deterministic_on_any_thread_count_and_positions_match_build() {
         b.positions_into(&surface, &mut pos).unwrap();
         assert_eq!(pos, built.positions);
         let mut nrm = vec![0.0; 3 * b.vertex_count()];
-        b.positions_and_normals_into(&surface, &mut pos, Some(&mut nrm))
+        let mut tan = vec![0.0; 3 * b.vertex_count()];
+        b.positions_and_shading_into(&surface, &mut pos, Some(&mut nrm), Some(&mut tan))
             .unwrap();
         assert_eq!(nrm, built.normals);
+        assert_eq!(tan, built.tangents);
     }
     assert_eq!(oa.normals, ob.normals);
 }

@@ -163,6 +163,9 @@ class KnitResult:
     yarn_closed: npt.NDArray[np.bool_]  # (Y,), whether each piece closes on itself
     yarn_radius: float
     normals: npt.NDArray[np.float32]  # (V, 3) shading normals: the swept tube's
+    # (V, 3) unit fibre directions: along the yarn, slanted with the plies' twist, across
+    # `normals` (a material's anisotropic tangent)
+    tangents: npt.NDArray[np.float32]
     stats: dict[str, Any]
 
 @final
@@ -217,10 +220,12 @@ class Knit:
         surface: GridSurface | MeshSurface,
         out: npt.NDArray[np.float32] | None = None,
         normals_out: npt.NDArray[np.float32] | None = None,
+        tangents_out: npt.NDArray[np.float32] | None = None,
     ) -> npt.NDArray[np.float32]:
         """(V, 3) float32 positions for `surface` in a new pose, bit-identical to
-        `build(surface).vertices`; written into `out` when given. With `normals_out`, the
-        shading normals (see `normals`) are written there in the same pass."""
+        `build(surface).vertices`; written into `out` when given. With `normals_out` and
+        `tangents_out`, the shading normals (see `normals`) and the fibre directions (see
+        `KnitResult.tangents`) are written there in the same pass."""
     def normals(
         self,
         surface: GridSurface | MeshSurface,

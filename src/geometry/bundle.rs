@@ -47,7 +47,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::frames::{frame_from_tangent, ring_frame};
-use super::plies::{ply_radius, twist};
+use super::plies::{ply_radius, twist, twist_rate};
 
 /// Apex angles per ring segment: an apex leans up to one segment past its edge's end in
 /// steps of this fraction of a segment.
@@ -114,6 +114,9 @@ pub struct PieceBuffers<'a> {
     /// `3 * vertices` floats: the shading normals, the swept tube's own (see
     /// [`build_bundle`]).
     pub normals: Option<&'a mut [f32]>,
+    /// `3 * vertices` floats: the fibre directions, unit tangents of the tube along the
+    /// plies' twist (see [`build_bundle`]).
+    pub tangents: Option<&'a mut [f32]>,
     pub topology: Option<TopologyBuffers<'a>>,
 }
 
@@ -136,6 +139,7 @@ impl<'a> PieceBuffers<'a> {
             positions,
             colors: None,
             normals: None,
+            tangents: None,
             topology: None,
         }
     }
@@ -204,6 +208,16 @@ fn ring_draws((seed, slot): (u64, u32), m: usize, colours: &mut [u32], tris: &mu
     }
 }
 
+/// The unit direction of a fibre at a point of the tube out from the centreline along
+/// `out` (unit, in the ring plane), where the yarn runs along `along` (unit) and the fibre
+/// turns round the yarn by `around` per unit along it: perpendicular to `out`, slanted from
+/// `along` by `atan(around)` towards the way the twist turns (`along x out`).
+fn fibre_direction(along: Vec3, out: Vec3, around: f32) -> Vec3 {
+    (along + around * along.cross(out))
+        .try_normalize()
+        .unwrap_or(along)
+}
+
 /// Builds the bundle of one yarn piece into `out`.
 ///
 /// The normals it writes (where `out` takes them) are the swept tube's, not the triangles':
@@ -212,6 +226,14 @@ fn ring_draws((seed, slot): (u64, u32), m: usize, colours: &mut [u32], tris: &mu
 /// on that tube, and shading them as the tube (Gouraud shading with the cylinder's normals,
 /// as the paper does) shows their randomness as texture, not as facets. They depend only on
 /// the ring frames, so a culled knit and every frame of an animated one get them alike.
+///
+/// The tangents it writes are the fibres' directions at each vertex, for a material's
+/// anisotropic highlight: unit, perpendicular to the vertex's normal, along the yarn and
+/// slanted round it as the plies' helix through that point runs (slope round the yarn per
+/// unit along it: the point's distance from the centreline, at most the yarn radius, times
+/// [`super::plies::twist_rate`] over the piece's length; an apex pushed out by the fluff
+/// keeps the slant of the yarn's surface). A one-ply yarn slants the same way: its fibres are twisted too. Like the normals they depend only on the centreline, so a culled knit and
+/// every frame of an animated one get them alike.
 ///
 /// `points`/`normals`: the centreline and the surface normal under each sample; `owner[i]`:
 /// (course, wale) of the stitch that sample `i` belongs to; `color_of(course, wale)`: the
@@ -248,6 +270,25 @@ pub fn build_bundle(
         Some(d) => twist(d.samples[i], settings.samples_per_loop),
         None => twist(i, settings.samples_per_loop),
     };
+    // How fast the twist turns along this span, radians per scene unit: its full-density
+    // samples' turns over its length. Even along the yarn, as real yarn's twist is: the
+    // samples bunch where the yarn curves (eight times closer at a loop's head than along
+    // its legs), and counted sample by sample the slant would swing with them.
+    let turn_rate = match out.tangents {
+        None => 0.0,
+        Some(_) => {
+            let sample_of = |i: usize| draws.map_or(i, |d| d.samples[i]);
+            let full_samples = draws.map_or(rings, |d| d.streams.len());
+            let mut length: f32 = points.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+            let samples = if closed {
+                length += (points[0] - points[rings - 1]).length();
+                full_samples
+            } else {
+                sample_of(rings - 1) - sample_of(0)
+            };
+            twist_rate(samples, length, settings.samples_per_loop)
+        }
+    };
     // Ring frames, kept for the apexes (which sit between ring points).
     let mut frames = vec![(Vec3::ZERO, Vec3::ZERO); rings];
     for i in 0..rings {
@@ -268,6 +309,10 @@ pub fn build_bundle(
                 n[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&d.to_array());
             }
             let rho = ply_radius(settings.plies, TAU * k as f32 / m as f32, twist);
+            if let Some(t) = out.tangents.as_mut() {
+                let f = fibre_direction(a.cross(b), d, r * rho * turn_rate);
+                t[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&f.to_array());
+            }
             let p = points[i] + r * rho * d;
             out.positions[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&p.to_array());
         }
@@ -414,6 +459,12 @@ pub fn build_bundle(
                 out.positions[3 * av..3 * av + 3].copy_from_slice(&apex.to_array());
                 if let Some(n) = out.normals.as_mut() {
                     n[3 * av..3 * av + 3].copy_from_slice(&apex_dir.to_array());
+                }
+                if let Some(t) = out.tangents.as_mut() {
+                    // A pushed-out strand keeps the slant of the surface it stands from.
+                    let around = r * (push * rho).min(1.0) * turn_rate;
+                    let f = fibre_direction(a.cross(b), apex_dir, around);
+                    t[3 * av..3 * av + 3].copy_from_slice(&f.to_array());
                 }
                 let ac = shade(bits >> 40, color);
                 if let Some(colors) = out.colors.as_mut() {
@@ -588,6 +639,17 @@ mod tests {
         fluffiness: f32,
         plies: usize,
     ) -> (Vec<f32>, Vec<f32>, Vec<f32>) {
+        let (positions, colors, normals, _) = plied_tube_shading(rings, m, fluffiness, plies);
+        (positions, colors, normals)
+    }
+
+    /// [`plied_tube`], and its tangents.
+    fn plied_tube_shading(
+        rings: usize,
+        m: usize,
+        fluffiness: f32,
+        plies: usize,
+    ) -> (Vec<f32>, Vec<f32>, Vec<f32>, Vec<f32>) {
         let points: Vec<Vec3> = (0..rings).map(|i| Vec3::new(i as f32, 0.0, 0.0)).collect();
         let settings = BundleSettings {
             radius: 0.25,
@@ -603,9 +665,11 @@ mod tests {
         let mut positions = vec![0.0; 3 * counts.vertices];
         let mut colors = vec![0.0; 4 * counts.vertices];
         let mut normals = vec![0.0; 3 * counts.vertices];
+        let mut tangents = vec![0.0; 3 * counts.vertices];
         let mut bufs = PieceBuffers::positions_only(&mut positions);
         bufs.colors = Some(&mut colors);
         bufs.normals = Some(&mut normals);
+        bufs.tangents = Some(&mut tangents);
         build_bundle(
             &points,
             &vec![Vec3::Z; rings],
@@ -617,7 +681,7 @@ mod tests {
             None,
             &mut bufs,
         );
-        (positions, colors, normals)
+        (positions, colors, normals, tangents)
     }
 
     /// A point of the straight tube as (angle round the axis in ring segments from ring
@@ -765,6 +829,73 @@ mod tests {
         // 0.8 too): writing them leaves the positions as they are.
         let all: Vec<usize> = (0..rings).collect();
         assert_eq!(straight_yarn_of(&all, m, None, 3).0, positions);
+    }
+
+    /// The tangents are the fibres' directions: unit, across the normal, forward along the
+    /// yarn, and slanted round it as the plies' helix through each vertex runs. On the
+    /// straight tube (rings a unit apart, 16 per loop, 4 turns a loop: the grooves turn
+    /// pi/2 radians per unit) a vertex at distance `rho` from the axis slants by
+    /// `atan(min(rho, radius) * pi / 2)`, the way the grooves turn, at ring points and
+    /// apexes alike.
+    #[test]
+    fn tangents_follow_the_plies_helix_across_the_normal() {
+        let (rings, m) = (40usize, 6usize);
+        for plies in [1, 3] {
+            let (positions, _, normals, tangents) = plied_tube_shading(rings, m, 0.8, plies);
+            let at = |buf: &[f32], v: usize| Vec3::from_slice(&buf[3 * v..3 * v + 3]);
+            let mut slants = Vec::new();
+            for v in 0..positions.len() / 3 {
+                let (p, n, t) = (at(&positions, v), at(&normals, v), at(&tangents, v));
+                assert!((t.length() - 1.0).abs() < 1e-5, "vertex {v}: tangent {t}");
+                assert!(
+                    t.dot(n).abs() < 1e-5,
+                    "vertex {v}: tangent {t} on normal {n}"
+                );
+                let rho = Vec3::new(0.0, p.y, p.z).length().min(0.25);
+                let slope = t.dot(Vec3::X.cross(n)) / t.x;
+                assert!(
+                    t.x > 0.0,
+                    "vertex {v}: tangent {t} runs back along the yarn"
+                );
+                assert!(
+                    (slope - rho * std::f32::consts::FRAC_PI_2).abs() < 1e-4,
+                    "{plies} plies, vertex {v} at {p}: slope {slope}, helix {}",
+                    rho * std::f32::consts::FRAC_PI_2
+                );
+                slants.push(slope.atan().to_degrees());
+            }
+            // Grooves spread the slant: about 21 degrees at the yarn's radius.
+            let (lo, hi) = slants
+                .iter()
+                .fold((f32::MAX, f32::MIN), |(a, b), &s| (a.min(s), b.max(s)));
+            assert!(
+                lo > 10.0 && hi < 40.0,
+                "{plies} plies: slants {lo}..{hi} degrees"
+            );
+        }
+        // The grooves of a 3-ply tube turn the way the tangents slant: following a ring
+        // point's tangent one unit along the yarn lands on the next ring's point with the
+        // same radius (24 points a ring: pi/2 radians is 6 of them).
+        let m = 24;
+        let (positions, _, normals, tangents) = plied_tube_shading(rings, m, 0.0, 3);
+        let at = |buf: &[f32], v: usize| Vec3::from_slice(&buf[3 * v..3 * v + 3]);
+        let radius = |v: usize| Vec3::new(0.0, positions[3 * v + 1], positions[3 * v + 2]);
+        for i in 0..rings - 1 {
+            for k in 0..m {
+                let v = i * m + k;
+                let (n, t) = (at(&normals, v), at(&tangents, v));
+                let turn = t.dot(Vec3::X.cross(n)) / t.x / radius(v).length();
+                // Which way round is `k + 1`: towards x cross (out) or away from it.
+                let next_point = radius(i * m + (k + 1) % m);
+                let sense = next_point.dot(Vec3::X.cross(n)).signum();
+                let step = (sense * turn * m as f32 / TAU).round() as isize;
+                let landed = (i + 1) * m + (k as isize + step).rem_euclid(m as isize) as usize;
+                assert!(
+                    (radius(landed).length() - radius(v).length()).abs() < 1e-4,
+                    "ring {i} point {k}: the tangent leads {step} points round, off the groove"
+                );
+            }
+        }
     }
 
     /// Degrees between each triangle's shading normal at its centroid (its corners' normals

@@ -38,6 +38,18 @@ pub fn twist(sample: usize, samples_per_loop: usize) -> f32 {
     TAU * turns.fract()
 }
 
+/// How fast the plies turn round the yarn where `samples` full-density samples span
+/// `length` scene units of centreline, radians per scene unit (0 where the span has no
+/// length). A point at radius `rho` from the centreline follows a helix whose slope round the
+/// yarn, per unit along it, is `rho` times this: the fibres' slant (see
+/// [`crate::geometry::build_bundle`]'s tangents).
+pub fn twist_rate(samples: usize, length: f32, samples_per_loop: usize) -> f32 {
+    if length <= 0.0 || !length.is_finite() {
+        return 0.0;
+    }
+    TAU * TURNS_PER_LOOP * samples as f32 / samples_per_loop.max(1) as f32 / length
+}
+
 /// The radius, as a fraction of the yarn radius, of a `plies`-ply yarn in the direction
 /// `angle` (radians round the ring from the ring frame's first axis) where the plies have
 /// turned by `twist`. Exactly 1 for one ply.

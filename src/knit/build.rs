@@ -128,48 +128,59 @@ impl PreparedKnit {
     /// `positions` (`3 * vertex_count()` floats): the same values [`build`](Self::build)
     /// writes, without allocating the rest. The per-frame path of an animated knit.
     pub fn positions_into(&self, surface: &dyn Surface, positions: &mut [f32]) -> Result<()> {
-        self.positions_and_normals_into(surface, positions, None)
+        self.positions_and_shading_into(surface, positions, None, None)
     }
 
-    /// [`positions_into`](Self::positions_into), and with `normals` (`3 * vertex_count()`
-    /// floats) the shading normals [`build`](Self::build) gives for that pose (the swept
-    /// tube's: see [`crate::geometry::build_bundle`]), in the same pass.
-    pub fn positions_and_normals_into(
+    /// [`positions_into`](Self::positions_into), and with `normals` and `tangents` (each
+    /// `3 * vertex_count()` floats) the shading normals and fibre directions
+    /// [`build`](Self::build) gives for that pose (the swept tube's: see
+    /// [`crate::geometry::build_bundle`]), in the same pass.
+    pub fn positions_and_shading_into(
         &self,
         surface: &dyn Surface,
         positions: &mut [f32],
         normals: Option<&mut [f32]>,
+        tangents: Option<&mut [f32]>,
     ) -> Result<()> {
         self.check_layout(surface)?;
-        if let Some(n) = &normals {
-            if n.len() != 3 * self.vertex_count() {
-                return Err(KnitError::Parameter(format!(
-                    "the normals buffer holds {} floats; this knit needs {}",
-                    n.len(),
-                    3 * self.vertex_count()
-                )));
-            }
-        }
         let nv = self.vertex_count();
-        if positions.len() != 3 * nv {
-            return Err(KnitError::Parameter(format!(
-                "the positions buffer holds {} floats; this knit needs {} ({nv} vertices x 3)",
-                positions.len(),
+        let check = |name: &str, len: usize| {
+            if len == 3 * nv {
+                return Ok(());
+            }
+            Err(KnitError::Parameter(format!(
+                "the {name} buffer holds {len} floats; this knit needs {} ({nv} vertices x 3)",
                 3 * nv
-            )));
+            )))
+        };
+        check("positions", positions.len())?;
+        if let Some(n) = &normals {
+            check("normals", n.len())?;
+        }
+        if let Some(t) = &tangents {
+            check("tangents", t.len())?;
         }
         run_in_pool(self.params.threads, || {
             let centrelines = self.centrelines(surface);
             match &self.hidden {
-                None => self.whole_positions(&centrelines, positions, normals),
+                None => self.whole_positions(&centrelines, positions, normals, tangents),
                 Some(h) => {
                     let nv = 3 * self.total.vertices as usize;
                     let mut whole = output_buffer::zeroed(nv);
                     let mut whole_normals = normals.as_ref().map(|_| output_buffer::zeroed(nv));
-                    self.whole_positions(&centrelines, &mut whole, whole_normals.as_deref_mut());
+                    let mut whole_tangents = tangents.as_ref().map(|_| output_buffer::zeroed(nv));
+                    self.whole_positions(
+                        &centrelines,
+                        &mut whole,
+                        whole_normals.as_deref_mut(),
+                        whole_tangents.as_deref_mut(),
+                    );
                     h.subset.gather_vectors(&whole, positions);
-                    if let (Some(normals), Some(whole_normals)) = (normals, whole_normals) {
-                        h.subset.gather_vectors(&whole_normals, normals);
+                    if let (Some(normals), Some(whole)) = (normals, whole_normals) {
+                        h.subset.gather_vectors(&whole, normals);
+                    }
+                    if let (Some(tangents), Some(whole)) = (tangents, whole_tangents) {
+                        h.subset.gather_vectors(&whole, tangents);
                     }
                 }
             }
@@ -178,30 +189,39 @@ impl PreparedKnit {
         crate::cancel::check()
     }
 
-    /// Every span's vertex positions, before any culling of hidden yarn.
+    /// Every span's vertex positions (and, where given, normals and tangents), before any
+    /// culling of hidden yarn.
     pub(super) fn whole_positions(
         &self,
         centrelines: &Centrelines,
         positions: &mut [f32],
         normals: Option<&mut [f32]>,
+        tangents: Option<&mut [f32]>,
     ) {
         let lengths = self.span_lengths(3);
         let pos = split_lengths(positions, &lengths);
-        let nrm: Vec<Option<&mut [f32]>> = match normals {
-            Some(n) => split_lengths(n, &lengths).into_iter().map(Some).collect(),
-            None => pos.iter().map(|_| None).collect(),
-        };
-        pos.into_par_iter()
-            .zip(nrm)
-            .enumerate()
-            .for_each(|(k, (positions, normals))| {
+        fn per_span<'a>(
+            buf: Option<&'a mut [f32]>,
+            lengths: &[usize],
+        ) -> Vec<Option<&'a mut [f32]>> {
+            match buf {
+                Some(b) => split_lengths(b, lengths).into_iter().map(Some).collect(),
+                None => lengths.iter().map(|_| None).collect(),
+            }
+        }
+        let nrm = per_span(normals, &lengths);
+        let tan = per_span(tangents, &lengths);
+        pos.into_par_iter().zip(nrm).zip(tan).enumerate().for_each(
+            |(k, ((positions, normals), tangents))| {
                 if crate::cancel::requested() {
                     return;
                 }
                 let mut bufs = PieceBuffers::positions_only(positions);
                 bufs.normals = normals;
+                bufs.tangents = tangents;
                 self.bundle_span(k, centrelines, &mut bufs);
-            });
+            },
+        );
     }
 
     /// Floats per span in a per-vertex buffer of `width` floats per vertex.
@@ -332,6 +352,9 @@ impl PreparedKnit {
             let mut normals = output_buffer::zeroed(3 * h.subset.vertex_count());
             h.subset.gather_vectors(&out.normals, &mut normals);
             out.normals = normals;
+            let mut tangents = output_buffer::zeroed(3 * h.subset.vertex_count());
+            h.subset.gather_vectors(&out.tangents, &mut tangents);
+            out.tangents = tangents;
             let b = h.subset.apply(
                 &out.positions,
                 &out.colors,
@@ -357,6 +380,7 @@ impl PreparedKnit {
         let mut out = KnitOutput {
             positions: output_buffer::zeroed(3 * nv),
             normals: output_buffer::zeroed(3 * nv),
+            tangents: output_buffer::zeroed(3 * nv),
             colors: output_buffer::zeroed(4 * nv),
             triangles: output_buffer::zeroed(3 * nt),
             corner_edges: output_buffer::zeroed(3 * nt),
@@ -379,12 +403,14 @@ impl PreparedKnit {
         };
         let pos = split_lengths(&mut out.positions, &lengths(&|c| 3 * c.vertices));
         let nrm = split_lengths(&mut out.normals, &lengths(&|c| 3 * c.vertices));
+        let tan = split_lengths(&mut out.tangents, &lengths(&|c| 3 * c.vertices));
         let col = split_lengths(&mut out.colors, &lengths(&|c| 4 * c.vertices));
         let tri = split_lengths(&mut out.triangles, &lengths(&|c| 3 * c.triangles));
         let ced = split_lengths(&mut out.corner_edges, &lengths(&|c| 3 * c.triangles));
         let edg = split_lengths(&mut out.edges, &lengths(&|c| 2 * c.edges));
         pos.into_par_iter()
             .zip(nrm)
+            .zip(tan)
             .zip(col)
             .zip(tri)
             .zip(ced)
@@ -393,7 +419,10 @@ impl PreparedKnit {
             .for_each(
                 |(
                     i,
-                    (((((positions, normals), colors), corner_verts), corner_edges), edge_verts),
+                    (
+                        (((((positions, normals), tangents), colors), corner_verts), corner_edges),
+                        edge_verts,
+                    ),
                 )| {
                     if crate::cancel::requested() {
                         return;
@@ -404,6 +433,7 @@ impl PreparedKnit {
                         positions,
                         colors: Some(colors),
                         normals: Some(normals),
+                        tangents: Some(tangents),
                         topology: Some(TopologyBuffers {
                             corner_verts,
                             corner_edges,

@@ -97,6 +97,11 @@ pub struct KnitOutput {
     /// place of the normals the fibre triangles give. A knit with its hidden yarn culled
     /// has the whole knit's at the vertices it keeps.
     pub normals: Vec<f32>,
+    /// `(V, 3)` unit fibre directions: tangents of the swept tube along the yarn, slanted
+    /// round it with the plies' twist, perpendicular to `normals` (see
+    /// [`crate::geometry::build_bundle`]), for a material's anisotropic highlight. Culled
+    /// like `normals`.
+    pub tangents: Vec<f32>,
     pub yarn_radius: f32,
     pub stats: KnitStats,
 }

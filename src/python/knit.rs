@@ -38,6 +38,10 @@ pub struct PyKnitResult {
     /// knit that culls its hidden yarn: the whole knit's, at the vertices it keeps).
     #[pyo3(get)]
     pub(crate) normals: Py<PyAny>,
+    /// `(V, 3)` unit fibre directions: along the yarn, slanted round it with the plies'
+    /// twist, perpendicular to `normals` (for a material's anisotropic highlight).
+    #[pyo3(get)]
+    pub(crate) tangents: Py<PyAny>,
     #[pyo3(get)]
     pub(crate) stats: Py<PyDict>,
 }
@@ -100,6 +104,7 @@ pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResul
     let yarn_radius = out.yarn_radius;
     Ok(PyKnitResult {
         normals: rows(py, out.normals, 3)?,
+        tangents: rows(py, out.tangents, 3)?,
         vertices: rows(py, out.positions, 3)?,
         triangles: rows(py, out.triangles, 3)?,
         edges: rows(py, out.edges, 2)?,
@@ -343,15 +348,17 @@ impl PyKnit {
     /// Vertex positions only, `(V, 3)` float32, for `surface` in a new pose: bit-identical
     /// to `build(surface).vertices`. With `out` (a writable C-contiguous float32 `(V, 3)`
     /// array) they are written there and `out` is returned: no allocation per frame. With
-    /// `normals_out` (another such array) the knit's shading normals are written there too,
-    /// in the same pass (see `normals`).
-    #[pyo3(signature = (surface, out=None, normals_out=None))]
+    /// `normals_out` and `tangents_out` (other such arrays) the knit's shading normals and
+    /// fibre directions are written there too, in the same pass (see `KnitResult.normals`
+    /// and `KnitResult.tangents`).
+    #[pyo3(signature = (surface, out=None, normals_out=None, tangents_out=None))]
     fn positions(
         &self,
         py: Python<'_>,
         surface: &Bound<'_, PyAny>,
         out: Option<&Bound<'_, PyAny>>,
         normals_out: Option<&Bound<'_, PyAny>>,
+        tangents_out: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Py<PyAny>> {
         let surf = AnySurface::from_py(surface)?;
         let knit = self.inner.clone();
@@ -363,12 +370,24 @@ impl PyKnit {
             Some(rw) => Some(contiguous(rw, "normals_out")?),
             None => None,
         };
+        let mut tangents = tangents_out
+            .map(|t| writable_rows(t, nv, "tangents_out"))
+            .transpose()?;
+        let tangents_slice = match tangents.as_mut() {
+            Some(rw) => Some(contiguous(rw, "tangents_out")?),
+            None => None,
+        };
         match out {
             None => {
                 let mut buf = crate::output_buffer::zeroed::<f32>(3 * nv);
                 let buf = guarded(py, move || {
-                    knit.positions_and_normals_into(surf.as_dyn(), &mut buf, normals_slice)
-                        .map(|_| buf)
+                    knit.positions_and_shading_into(
+                        surf.as_dyn(),
+                        &mut buf,
+                        normals_slice,
+                        tangents_slice,
+                    )
+                    .map(|_| buf)
                 })?;
                 rows(py, buf, 3)
             }
@@ -376,7 +395,12 @@ impl PyKnit {
                 let mut rw = writable_rows(obj, nv, "out")?;
                 let slice = contiguous(&mut rw, "out")?;
                 guarded(py, move || {
-                    knit.positions_and_normals_into(surf.as_dyn(), slice, normals_slice)
+                    knit.positions_and_shading_into(
+                        surf.as_dyn(),
+                        slice,
+                        normals_slice,
+                        tangents_slice,
+                    )
                 })?;
                 Ok(obj.clone().unbind())
             }
@@ -384,8 +408,8 @@ impl PyKnit {
     }
 
     /// `(V, 3)` float32 unit shading normals for `surface` in a new pose (the swept tube's,
-    /// out from the yarn's centreline), bit-identical to `build(surface).normals`. With `out`, written there. `positions(surface, out,
-    /// normals_out)` gives both in one pass.
+    /// out from the yarn's centreline), bit-identical to `build(surface).normals`. With `out`, written there.
+    /// `positions(surface, out, normals_out)` gives both in one pass.
     #[pyo3(signature = (surface, out=None))]
     fn normals(
         &self,
@@ -401,10 +425,11 @@ impl PyKnit {
             None => {
                 let mut normals = crate::output_buffer::zeroed::<f32>(3 * nv);
                 let normals = guarded(py, move || {
-                    knit.positions_and_normals_into(
+                    knit.positions_and_shading_into(
                         surf.as_dyn(),
                         &mut positions,
                         Some(&mut normals),
+                        None,
                     )
                     .map(|_| normals)
                 })?;
@@ -414,7 +439,12 @@ impl PyKnit {
                 let mut rw = writable_rows(obj, nv, "out")?;
                 let slice = contiguous(&mut rw, "out")?;
                 guarded(py, move || {
-                    knit.positions_and_normals_into(surf.as_dyn(), &mut positions, Some(slice))
+                    knit.positions_and_shading_into(
+                        surf.as_dyn(),
+                        &mut positions,
+                        Some(slice),
+                        None,
+                    )
                 })?;
                 Ok(obj.clone().unbind())
             }

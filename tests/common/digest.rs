@@ -3,7 +3,7 @@
 use knitwear::knit::KnitOutput;
 
 /// FNV-1a (64-bit) over the little-endian bytes of every buffer a knit returns: positions,
-/// colours, centreline and normals (as float bits), then triangles, corner edges, edges,
+/// colours, centreline, normals and tangents (as float bits), then triangles, corner edges, edges,
 /// yarn courses and yarn offsets. Equal digests: identical outputs, to the last bit.
 pub fn digest(out: &KnitOutput) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -13,7 +13,13 @@ pub fn digest(out: &KnitOutput) -> u64 {
             h = h.wrapping_mul(0x0000_0100_0000_01b3);
         }
     };
-    for buf in [&out.positions, &out.colors, &out.centerline, &out.normals] {
+    for buf in [
+        &out.positions,
+        &out.colors,
+        &out.centerline,
+        &out.normals,
+        &out.tangents,
+    ] {
         for x in buf.iter() {
             eat(&x.to_bits().to_le_bytes());
         }

@@ -81,6 +81,38 @@ def test_a_knit_shades_with_its_yarns_own_normals_which_follow_it(api: ModuleTyp
     assert np.abs(shaded[5] - shaded[15]).max() > 0.1, "the normals did not move with the yarn"
 
 
+def test_a_knit_carries_its_fibres_directions_which_follow_it(api: ModuleType) -> None:
+    """A knit carries the core's fibre directions (`yarn_tangent`, the yarn material's
+    anisotropic tangent), and in a scene that renders with Cycles each frame rewrites them
+    with the positions: they are the core's for that pose and turn with the yarn. EEVEE,
+    which has no anisotropy, does not pay for them: its frames leave them as they were."""
+    scene = bpy.context.scene
+    knit = knit_of(api, waving_cloth())
+    mesh = knit.data
+    at_rest = np.empty((len(mesh.vertices), 3), np.float32)
+    mesh.attributes["yarn_tangent"].data.foreach_get("vector", at_rest.ravel())
+    scene.render.engine = "BLENDER_EEVEE_NEXT" if bpy.app.version < (4, 5) else "BLENDER_EEVEE"
+    scene.frame_set(9)
+    kept = np.empty_like(at_rest)
+    mesh.attributes["yarn_tangent"].data.foreach_get("vector", kept.ravel())
+    np.testing.assert_array_equal(kept, at_rest)
+    scene.render.engine = "CYCLES"
+    attribute = mesh.attributes["yarn_tangent"]
+    assert (attribute.domain, attribute.data_type) == ("POINT", "FLOAT_VECTOR")
+    carried = {}
+    for frame in (5, 15):
+        scene.frame_set(frame)
+        ours = np.empty((len(mesh.vertices), 3), np.float32)
+        mesh.attributes["yarn_tangent"].data.foreach_get("vector", ours.ravel())
+        sampled = api.sample_source(knit, bpy.context, bpy.context.evaluated_depsgraph_get())
+        core = np.empty_like(ours)
+        api.bind(knit, sampled, scene).positions(sampled.surface, tangents_out=core)
+        np.testing.assert_array_equal(ours, core)
+        np.testing.assert_allclose(np.linalg.norm(ours, axis=1), 1.0, atol=1e-5)
+        carried[frame] = ours
+    assert np.abs(carried[5] - carried[15]).max() > 0.1, "the tangents did not turn with the yarn"
+
+
 def test_following_equals_the_knit_bound_at_rest_posed_anew(
     api: ModuleType, addon: ModuleType
 ) -> None:
