@@ -279,6 +279,43 @@ fn decreases_yarn_overs_and_slips_make_their_cells() {
     );
 }
 
+/// `p3tog` and `sssp` (issue 17's vocabulary, 221 and 22 stitch-maps patterns): `k3tog` and
+/// `sssk` purled, one stitch through three loops leaning the same ways; worked from the wrong
+/// side, `k3tog` and `sssk` show as them from the front, and charts draw and read them back.
+#[test]
+fn purled_double_decreases_gather_three_loops_and_chart() {
+    let p = ks("Row 1 (RS): k1, yo, p3tog, yo, k1, yo, sssp, yo, k1.\nRow 2 (WS): Purl.");
+    check_pattern("purled double decreases", &p);
+    let k = ks("Row 1 (RS): k1, yo, k3tog, yo, k1, yo, sssk, yo, k1.\nRow 2 (WS): Purl.");
+    // Columns left to right from the front: k1, yo, sssp, yo, k1, yo, p3tog, yo, k1.
+    for (col, lean) in [(2, "sssp"), (6, "p3tog")] {
+        let (purled, knit) = (p.stitch(0, col), k.stitch(0, col));
+        assert_eq!(purled.face, Face::Purl, "{lean}");
+        assert_eq!(purled.sources, 3, "{lean}");
+        // The same gather as its knit twin, loop for loop, only purled.
+        assert_eq!(
+            (purled.sources, purled.form),
+            (knit.sources, knit.form),
+            "{lean}"
+        );
+        for c in 0..p.width() {
+            assert_eq!(
+                p.stitch(1, c),
+                k.stitch(1, c),
+                "{lean}: the loops below land alike"
+            );
+        }
+    }
+    // A k3tog and an sssk worked from the wrong side are these, seen from the front (the
+    // row worked from the left edge).
+    let ws = ks("Row 1 (RS): Knit.\nRow 2 (WS): p1, yo, k3tog, yo, p1, yo, sssk, yo, p1.");
+    let front = ks("Row 1 (RS): Knit.\nRow 2 (RS): k1, yo, sssp, yo, k1, yo, p3tog, yo, k1.");
+    assert!(same_cells(&ws, &front), "{}\n{}", ws.chart(), front.chart());
+    check_pattern("double decreases from the wrong side", &ws);
+    assert!(ws.chart().contains("p3tog"), "{}", ws.chart());
+    assert!(ws.chart().contains("sssp"), "{}", ws.chart());
+}
+
 #[test]
 fn wrong_side_rows_are_mirrored() {
     // Row 1 starts at the right edge; row 2 (WS) at the left edge, its knits show as purls.
@@ -401,6 +438,8 @@ fn repeats_groups_counts_and_spelling() {
         "sssk",
         "p2tog",
         "ssp",
+        "p3tog",
+        "sssp",
         "MB",
         "1/1 LPT",
         "2/1 LPC",

@@ -81,7 +81,7 @@ const SPARE_SYMBOLS: &str = "XYZACDEFGHJLMNRSTUWacdefghjlmnrstuwxyz0123456789";
 
 /// A chart cell's stitch: a right-side instruction, and whether its stitches show the other
 /// face (a stitch worked from the wrong side that differs from a right-side one only by its
-/// face: `sl1 wyib (WS)`, `MB (WS)`, `k3tog (WS)`, `sssk (WS)`).
+/// face: `sl1 wyib (WS)`, `MB (WS)`).
 type Charted = (Instruction, bool);
 
 /// The right-side stitch that shows as `ws` worked from the wrong side, and whether its face
@@ -103,6 +103,8 @@ fn from_wrong_side(ws: Instruction) -> Option<Charted> {
         I::P2tog => (I::K2tog, false),
         I::Ssk => (I::Ssp, false),
         I::Ssp => (I::Ssk, false),
+        I::P3tog => (I::K3tog, false),
+        I::Sssp => (I::Sssk, false),
         I::YarnOver | I::MakeOneLeft | I::MakeOneRight => (ws, false),
         I::Slip { yarn_front } => (
             I::Slip {
@@ -110,7 +112,9 @@ fn from_wrong_side(ws: Instruction) -> Option<Charted> {
             },
             true,
         ),
-        I::Bobble | I::K3tog | I::Sssk => (ws, true),
+        I::K3tog => (I::P3tog, false),
+        I::Sssk => (I::Sssp, false),
+        I::Bobble => (ws, true),
         I::Cross {
             m,
             n,
@@ -388,6 +392,8 @@ fn candidates() -> Vec<Charted> {
         I::Ssp,
         I::K3tog,
         I::Sssk,
+        I::P3tog,
+        I::Sssp,
         I::Sk2p,
         I::Cdd,
         I::Bobble,
@@ -411,8 +417,6 @@ fn candidates() -> Vec<Charted> {
         I::Slip { yarn_front: false },
         I::Slip { yarn_front: true },
         I::Bobble,
-        I::K3tog,
-        I::Sssk,
     ] {
         all.push((i, true));
     }

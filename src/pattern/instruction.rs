@@ -38,6 +38,10 @@ pub enum Instruction {
     K3tog,
     /// `sssk`: left-leaning double decrease.
     Sssk,
+    /// `p3tog`: [`Self::K3tog`] purled.
+    P3tog,
+    /// `sssp`: [`Self::Sssk`] purled.
+    Sssp,
     /// `sl1-k2tog-psso` (`sk2p`): left-leaning double decrease, the slipped (right) loop on top.
     Sk2p,
     /// `cdd` (`sl2-k1-p2sso`, `s2kp`): centred double decrease, the centre loop on top.
@@ -91,7 +95,7 @@ impl Instruction {
         match self {
             Self::YarnOver | Self::MakeOneLeft | Self::MakeOneRight => 0,
             Self::K2tog | Self::Ssk | Self::P2tog | Self::Ssp => 2,
-            Self::K3tog | Self::Sssk | Self::Sk2p | Self::Cdd => 3,
+            Self::K3tog | Self::Sssk | Self::P3tog | Self::Sssp | Self::Sk2p | Self::Cdd => 3,
             Self::Cross { m, n, .. } => usize::from(m) + usize::from(n),
             _ => 1,
         }
@@ -123,6 +127,8 @@ impl Instruction {
             Self::Ssp => "ssp".into(),
             Self::K3tog => "k3tog".into(),
             Self::Sssk => "sssk".into(),
+            Self::P3tog => "p3tog".into(),
+            Self::Sssp => "sssp".into(),
             Self::Sk2p => "sl1-k2tog-psso".into(),
             Self::Cdd => "cdd".into(),
             Self::Bobble => "MB".into(),
@@ -188,10 +194,12 @@ impl Instruction {
             Self::K2tog => gather(Face::Knit, &[1, -1]),
             Self::P2tog => gather(Face::Purl, &[1, -1]),
             Self::K3tog => gather(Face::Knit, &[1, 0, -1]),
+            Self::P3tog => gather(Face::Purl, &[1, 0, -1]),
             // Left-leaning: the right loop on top.
             Self::Ssk => gather(Face::Knit, &[-1, 1]),
             Self::Ssp => gather(Face::Purl, &[-1, 1]),
             Self::Sssk => gather(Face::Knit, &[-1, 0, 1]),
+            Self::Sssp => gather(Face::Purl, &[-1, 0, 1]),
             // The slipped right loop passed over the k2tog of the other two.
             Self::Sk2p => gather(Face::Knit, &[0, -1, 1]),
             // The centre loop on top of the two passed over it.

@@ -24,6 +24,7 @@ pub use knitspeak::{looks_like_knitspeak, parse_knitspeak};
 pub use presets::{color_preset, COLOR_PRESETS, FAIR_ISLE_BAND, PRESETS};
 pub use rows::WrittenRow;
 pub use stitch::{Face, Form, Stitch};
+pub use vocabulary::reads_stitch;
 
 use crate::error::{KnitError, Result};
 

@@ -219,6 +219,12 @@ pub(crate) const VOCABULARY: &[Entry] = {
         phrase(&["k3tog", "k 3 tog", "k3 tog"], I::K3tog, &["k3tog"]),
         phrase(&["sssk"], I::Sssk, &["sssk"]),
         phrase(
+            &["p3tog", "p 3 tog", "p3 tog", "purl 3 together"],
+            I::P3tog,
+            &["p3tog"],
+        ),
+        phrase(&["sssp"], I::Sssp, &["sssp"]),
+        phrase(
             &[
                 "sk2p",
                 "sk2po",
@@ -313,6 +319,12 @@ pub(crate) fn parse_stitch(phrase: &str) -> Option<(Stitched, usize)> {
     VOCABULARY
         .iter()
         .find_map(|entry| entry.reads.read(&norm, &squeezed))
+}
+
+/// The instruction a stitch phrase reads as (`"k2tog"`, `"sl1-k2tog-psso"`, `"2/2 LPC"`,
+/// `"k1 tbl"`), whatever its count; `None` where the reader does not know the stitch.
+pub fn reads_stitch(phrase: &str) -> Option<Instruction> {
+    parse_stitch(phrase).map(|(stitched, _)| stitched.ins)
 }
 
 impl Reads {
