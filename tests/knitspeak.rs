@@ -316,6 +316,39 @@ fn purled_double_decreases_gather_three_loops_and_chart() {
     assert!(ws.chart().contains("sssp"), "{}", ws.chart());
 }
 
+/// `k2tog tbl`, `p2tog tbl` and `cddp` (issue 17's vocabulary, 145, 124 and 62 stitch-maps
+/// patterns): `ssk`, `ssp` and `cdd` with the stitch twisted or purled; from the wrong side
+/// a `k2tog tbl` shows as a `p2tog tbl`, and charts draw and read them all back.
+#[test]
+fn twisted_decreases_and_the_purled_centred_decrease_chart() {
+    let p =
+        ks("Row 1 (RS): k1, yo, k2tog tbl, p1, yo, p2tog tbl, yo, cddp, yo.\nRow 2 (WS): Purl.");
+    check_pattern("twisted and purled decreases", &p);
+    let twin = ks("Row 1 (RS): k1, yo, ssk, p1, yo, ssp, yo, cdd, yo.\nRow 2 (WS): Purl.");
+    // Columns left to right from the front: yo, cddp, yo, p2tog tbl, yo, p1, k2tog tbl, yo,
+    // k1; each decrease gathers its loops as its twin does.
+    for (col, face, form) in [
+        (1, Face::Purl, Form::Plain),
+        (3, Face::Purl, Form::Twisted),
+        (6, Face::Knit, Form::Twisted),
+    ] {
+        let (ours, theirs) = (p.stitch(0, col), twin.stitch(0, col));
+        assert_eq!((ours.face, ours.form), (face, form), "column {col}");
+        assert_eq!(ours.sources, theirs.sources, "column {col}");
+    }
+    for c in 0..p.width() {
+        assert_eq!(
+            p.stitch(1, c),
+            twin.stitch(1, c),
+            "the loops below land alike"
+        );
+    }
+    let ws = ks("Row 1 (RS): Knit.\nRow 2 (WS): p1, k2tog tbl, yo, p1.");
+    let front = ks("Row 1 (RS): Knit.\nRow 2 (RS): k1, yo, p2tog tbl, k1.");
+    assert!(same_cells(&ws, &front), "{}\n{}", ws.chart(), front.chart());
+    check_pattern("a twisted decrease from the wrong side", &ws);
+}
+
 #[test]
 fn wrong_side_rows_are_mirrored() {
     // Row 1 starts at the right edge; row 2 (WS) at the left edge, its knits show as purls.
@@ -440,6 +473,9 @@ fn repeats_groups_counts_and_spelling() {
         "ssp",
         "p3tog",
         "sssp",
+        "k2tog tbl",
+        "p2tog tbl",
+        "cddp",
         "MB",
         "1/1 LPT",
         "2/1 LPC",

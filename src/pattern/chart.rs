@@ -85,7 +85,7 @@ const SPARE_SYMBOLS: &str = "XYZACDEFGHJLMNRSTUWacdefghjlmnrstuwxyz0123456789";
 type Charted = (Instruction, bool);
 
 /// The right-side stitch that shows as `ws` worked from the wrong side, and whether its face
-/// is flipped; `None` where no right-side stitch shows like it (`sk2p`, `cdd`).
+/// is flipped; `None` where no right-side stitch shows like it (`sk2p`, `cdd`, `cddp`).
 ///
 /// A cross worked from the wrong side is seen from the right side with its two groups
 /// swapped (`m/n` becomes `n/m`: the first group worked is at the other end) but leaning the
@@ -105,6 +105,8 @@ fn from_wrong_side(ws: Instruction) -> Option<Charted> {
         I::Ssp => (I::Ssk, false),
         I::P3tog => (I::K3tog, false),
         I::Sssp => (I::Sssk, false),
+        I::K2togTbl => (I::P2togTbl, false),
+        I::P2togTbl => (I::K2togTbl, false),
         I::YarnOver | I::MakeOneLeft | I::MakeOneRight => (ws, false),
         I::Slip { yarn_front } => (
             I::Slip {
@@ -129,7 +131,7 @@ fn from_wrong_side(ws: Instruction) -> Option<Charted> {
             },
             !purl_back,
         ),
-        I::Sk2p | I::Cdd => return None,
+        I::Sk2p | I::Cdd | I::Cddp => return None,
     })
 }
 
@@ -394,8 +396,11 @@ fn candidates() -> Vec<Charted> {
         I::Sssk,
         I::P3tog,
         I::Sssp,
+        I::K2togTbl,
+        I::P2togTbl,
         I::Sk2p,
         I::Cdd,
+        I::Cddp,
         I::Bobble,
     ];
     for m in 1..=MAX_CROSS_SIDE {

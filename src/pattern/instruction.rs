@@ -42,6 +42,13 @@ pub enum Instruction {
     P3tog,
     /// `sssp`: [`Self::Sssk`] purled.
     Sssp,
+    /// `k2tog tbl`: two loops knitted together through their back loops, which leans left
+    /// like [`Self::Ssk`] (the right loop on top), the stitch twisted.
+    K2togTbl,
+    /// `p2tog tbl`: [`Self::K2togTbl`] purled.
+    P2togTbl,
+    /// `cddp` (`sl2-p1-p2sso`): [`Self::Cdd`] purled.
+    Cddp,
     /// `sl1-k2tog-psso` (`sk2p`): left-leaning double decrease, the slipped (right) loop on top.
     Sk2p,
     /// `cdd` (`sl2-k1-p2sso`, `s2kp`): centred double decrease, the centre loop on top.
@@ -94,8 +101,16 @@ impl Instruction {
     pub fn stitches_in(self) -> usize {
         match self {
             Self::YarnOver | Self::MakeOneLeft | Self::MakeOneRight => 0,
-            Self::K2tog | Self::Ssk | Self::P2tog | Self::Ssp => 2,
-            Self::K3tog | Self::Sssk | Self::P3tog | Self::Sssp | Self::Sk2p | Self::Cdd => 3,
+            Self::K2tog | Self::Ssk | Self::P2tog | Self::Ssp | Self::K2togTbl | Self::P2togTbl => {
+                2
+            }
+            Self::K3tog
+            | Self::Sssk
+            | Self::P3tog
+            | Self::Sssp
+            | Self::Sk2p
+            | Self::Cdd
+            | Self::Cddp => 3,
             Self::Cross { m, n, .. } => usize::from(m) + usize::from(n),
             _ => 1,
         }
@@ -129,6 +144,9 @@ impl Instruction {
             Self::Sssk => "sssk".into(),
             Self::P3tog => "p3tog".into(),
             Self::Sssp => "sssp".into(),
+            Self::K2togTbl => "k2tog tbl".into(),
+            Self::P2togTbl => "p2tog tbl".into(),
+            Self::Cddp => "cddp".into(),
             Self::Sk2p => "sl1-k2tog-psso".into(),
             Self::Cdd => "cdd".into(),
             Self::Bobble => "MB".into(),
@@ -169,10 +187,10 @@ impl Instruction {
             loops: vec![],
         };
         // A decrease: one stitch through all loops, `layers` front-to-back order per loop.
-        let gather = |face, layers: &[i8]| Worked {
+        let gather_as = |face, form, layers: &[i8]| Worked {
             made: vec![MadeStitch {
                 face,
-                form: Form::Plain,
+                form,
                 first_source: 0,
                 sources: layers.len(),
             }],
@@ -181,6 +199,7 @@ impl Instruction {
                 .map(|&layer| LoopFate { made_by: 0, layer })
                 .collect(),
         };
+        let gather = |face, layers: &[i8]| gather_as(face, Form::Plain, layers);
         match self {
             Self::Knit => one(Face::Knit, Form::Plain),
             Self::Purl => one(Face::Purl, Form::Plain),
@@ -200,10 +219,13 @@ impl Instruction {
             Self::Ssp => gather(Face::Purl, &[-1, 1]),
             Self::Sssk => gather(Face::Knit, &[-1, 0, 1]),
             Self::Sssp => gather(Face::Purl, &[-1, 0, 1]),
+            Self::K2togTbl => gather_as(Face::Knit, Form::Twisted, &[-1, 1]),
+            Self::P2togTbl => gather_as(Face::Purl, Form::Twisted, &[-1, 1]),
             // The slipped right loop passed over the k2tog of the other two.
             Self::Sk2p => gather(Face::Knit, &[0, -1, 1]),
             // The centre loop on top of the two passed over it.
             Self::Cdd => gather(Face::Knit, &[0, 1, -1]),
+            Self::Cddp => gather(Face::Purl, &[0, 1, -1]),
             Self::Cross {
                 m,
                 n,

@@ -226,6 +226,31 @@ pub(crate) const VOCABULARY: &[Entry] = {
         phrase(&["sssp"], I::Sssp, &["sssp"]),
         phrase(
             &[
+                "k2tog tbl",
+                "k2 tog tbl",
+                "k 2 tog tbl",
+                "k2tog through back loops",
+            ],
+            I::K2togTbl,
+            &["k2tog tbl"],
+        ),
+        phrase(
+            &[
+                "p2tog tbl",
+                "p2 tog tbl",
+                "p 2 tog tbl",
+                "p2tog through back loops",
+            ],
+            I::P2togTbl,
+            &["p2tog tbl"],
+        ),
+        phrase(
+            &["cddp", "sl2 p1 p2sso", "sl 2 p1 p2sso", "s2 p1 p2sso"],
+            I::Cddp,
+            &["cddp"],
+        ),
+        phrase(
+            &[
                 "sk2p",
                 "sk2po",
                 "sl1 k2tog psso",
