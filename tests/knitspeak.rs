@@ -349,6 +349,21 @@ fn twisted_decreases_and_the_purled_centred_decrease_chart() {
     check_pattern("a twisted decrease from the wrong side", &ws);
 }
 
+/// `m1lp` and `m1rp` (issue 17's vocabulary, 63 and 43 stitch-maps patterns): worked
+/// purlwise, a made stitch is the same new loop as `m1l` and `m1r` (it has no loop below to be
+/// pulled through to one side; the next row works it), as a `m1l` worked from the wrong side
+/// is.
+#[test]
+fn purled_made_stitches_are_the_same_new_loops() {
+    let p = ks("Row 1 (RS): p1, m1lp, p2tog, m1rp, p2tog.\nRow 2 (WS): Knit.");
+    let k = ks("Row 1 (RS): p1, m1l, p2tog, m1r, p2tog.\nRow 2 (WS): Knit.");
+    assert!(same_cells(&p, &k), "{}\n{}", p.chart(), k.chart());
+    check_pattern("purled made stitches", &p);
+    let ws = ks("Row 1 (RS): Knit.\nRow 2 (WS): p1, m1l, p2tog.");
+    let front = ks("Row 1 (RS): Knit.\nRow 2 (RS): k2tog, m1lp, k1.");
+    assert!(same_cells(&ws, &front), "{}\n{}", ws.chart(), front.chart());
+}
+
 #[test]
 fn wrong_side_rows_are_mirrored() {
     // Row 1 starts at the right edge; row 2 (WS) at the left edge, its knits show as purls.
@@ -476,6 +491,8 @@ fn repeats_groups_counts_and_spelling() {
         "k2tog tbl",
         "p2tog tbl",
         "cddp",
+        "m1lp",
+        "m1rp",
         "MB",
         "1/1 LPT",
         "2/1 LPC",

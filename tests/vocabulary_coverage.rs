@@ -93,6 +93,8 @@ fn stitch_maps_names_read_as_their_stitches() {
         ("k2tog-tbl", I::K2togTbl),
         ("p2tog-tbl", I::P2togTbl),
         ("cddp", I::Cddp),
+        ("m1lp", I::MakeOneLeft),
+        ("m1rp", I::MakeOneRight),
         ("1/1-rc", cross(1, 1, false, false)),
         ("2/2-lpc", cross(2, 2, true, true)),
         ("2/1-rpc", cross(2, 1, false, true)),

@@ -192,6 +192,14 @@ pub(crate) const VOCABULARY: &[Entry] = {
             &["m1", "m1l"],
         ),
         phrase(&["m1r", "m1 r", "m1 right"], I::MakeOneRight, &["m1r"]),
+        // Worked purlwise, a made stitch is the same new loop: it has no loop below to be
+        // pulled through to one side, and the next row works it (see `rows::oriented`).
+        phrase(
+            &["m1lp", "m1p", "m1 lp", "m1 purlwise", "make 1 purlwise"],
+            I::MakeOneLeft,
+            &["m1lp", "m1p"],
+        ),
+        phrase(&["m1rp", "m1 rp"], I::MakeOneRight, &["m1rp"]),
         phrase(
             &["k2tog", "k 2 tog", "k2 tog", "knit 2 together"],
             I::K2tog,
@@ -610,8 +618,13 @@ mod tests {
             I::Ssp,
             I::K3tog,
             I::Sssk,
+            I::P3tog,
+            I::Sssp,
+            I::K2togTbl,
+            I::P2togTbl,
             I::Sk2p,
             I::Cdd,
+            I::Cddp,
             I::Bobble,
         ];
         for m in 1..=MAX_CROSS_SIDE {

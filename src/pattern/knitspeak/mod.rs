@@ -32,7 +32,8 @@
 //! - Stitches (any case; `-` and spaces are interchangeable), as listed once in
 //!   [`super::vocabulary`]: `k`, `p` with counts (`k2`, `K 2`, `knit 2`), `k tbl` / `k1-tbl` /
 //!   `p2 tbl`, `sl1` / `sl 2 pwise wyif` / `sl1 wyib` (without `wyib`/`wyif` the yarn is held
-//!   on the wrong side: in back on a RS row, in front on a WS row), `yo`, `m1` = `m1l`, `m1r`,
+//!   on the wrong side: in back on a RS row, in front on a WS row), `yo`, `m1` = `m1l`, `m1r`
+//!   (`m1lp`, `m1rp`: the same new loops),
 //!   `k2tog`, `ssk` (`skp`), `p2tog`, `ssp`, `k3tog`, `sssk`, `p3tog`, `sssp`, `k2tog tbl`,
 //!   `p2tog tbl`, `sk2p` (`sl1-k2tog-psso`), `cdd` (`s2kp`, `sl2-k1-p2sso`), `cddp`
 //!   (`sl2-p1-p2sso`), `MB` (bobble), crosses `m/n RC`,
