@@ -364,6 +364,24 @@ fn purled_made_stitches_are_the_same_new_loops() {
     assert!(same_cells(&ws, &front), "{}\n{}", ws.chart(), front.chart());
 }
 
+/// `k4tog`, `k5tog`, `p4tog`, `p5tog` (issue 17's vocabulary, 76, 109, 7 and 37 stitch-maps
+/// patterns): one stitch through four or five loops, leaning right as `k3tog` does; worked
+/// from the wrong side a `k5tog` shows as a `p5tog`, and charts draw and read them back.
+#[test]
+fn four_and_five_loop_decreases_gather_and_chart() {
+    let p = ks("Row 1 (RS): k1, yo, yo, k4tog, yo, yo, yo, p5tog, yo, yo, k1.\nRow 2 (WS): Purl.");
+    check_pattern("four and five loop decreases", &p);
+    // Columns left to right from the front: k1, yo, yo, p5tog, yo, yo, yo, k4tog, yo, yo, k1.
+    for (col, face, sources) in [(3, Face::Purl, 5), (7, Face::Knit, 4)] {
+        let s = p.stitch(0, col);
+        assert_eq!((s.face, s.sources), (face, sources), "column {col}");
+    }
+    let ws = ks("Row 1 (RS): Knit.\nRow 2 (WS): p1, yo, yo, k5tog, yo, yo, p1.");
+    let front = ks("Row 1 (RS): Knit.\nRow 2 (RS): k1, yo, yo, p5tog, yo, yo, k1.");
+    assert!(same_cells(&ws, &front), "{}\n{}", ws.chart(), front.chart());
+    check_pattern("a five loop decrease from the wrong side", &ws);
+}
+
 #[test]
 fn wrong_side_rows_are_mirrored() {
     // Row 1 starts at the right edge; row 2 (WS) at the left edge, its knits show as purls.
@@ -493,6 +511,8 @@ fn repeats_groups_counts_and_spelling() {
         "cddp",
         "m1lp",
         "m1rp",
+        "k4tog",
+        "p5tog",
         "MB",
         "1/1 LPT",
         "2/1 LPC",

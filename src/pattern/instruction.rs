@@ -49,6 +49,14 @@ pub enum Instruction {
     P2togTbl,
     /// `cddp` (`sl2-p1-p2sso`): [`Self::Cdd`] purled.
     Cddp,
+    /// `k4tog`: right-leaning triple decrease, the loops stacked left over right.
+    K4tog,
+    /// `p4tog`: [`Self::K4tog`] purled.
+    P4tog,
+    /// `k5tog`: right-leaning quadruple decrease, the loops stacked left over right.
+    K5tog,
+    /// `p5tog`: [`Self::K5tog`] purled.
+    P5tog,
     /// `sl1-k2tog-psso` (`sk2p`): left-leaning double decrease, the slipped (right) loop on top.
     Sk2p,
     /// `cdd` (`sl2-k1-p2sso`, `s2kp`): centred double decrease, the centre loop on top.
@@ -111,6 +119,8 @@ impl Instruction {
             | Self::Sk2p
             | Self::Cdd
             | Self::Cddp => 3,
+            Self::K4tog | Self::P4tog => 4,
+            Self::K5tog | Self::P5tog => 5,
             Self::Cross { m, n, .. } => usize::from(m) + usize::from(n),
             _ => 1,
         }
@@ -147,6 +157,10 @@ impl Instruction {
             Self::K2togTbl => "k2tog tbl".into(),
             Self::P2togTbl => "p2tog tbl".into(),
             Self::Cddp => "cddp".into(),
+            Self::K4tog => "k4tog".into(),
+            Self::P4tog => "p4tog".into(),
+            Self::K5tog => "k5tog".into(),
+            Self::P5tog => "p5tog".into(),
             Self::Sk2p => "sl1-k2tog-psso".into(),
             Self::Cdd => "cdd".into(),
             Self::Bobble => "MB".into(),
@@ -214,6 +228,11 @@ impl Instruction {
             Self::P2tog => gather(Face::Purl, &[1, -1]),
             Self::K3tog => gather(Face::Knit, &[1, 0, -1]),
             Self::P3tog => gather(Face::Purl, &[1, 0, -1]),
+            // More loops stack further: the outer ones pass those they cross twice as far.
+            Self::K4tog => gather(Face::Knit, &[2, 1, -1, -2]),
+            Self::P4tog => gather(Face::Purl, &[2, 1, -1, -2]),
+            Self::K5tog => gather(Face::Knit, &[2, 1, 0, -1, -2]),
+            Self::P5tog => gather(Face::Purl, &[2, 1, 0, -1, -2]),
             // Left-leaning: the right loop on top.
             Self::Ssk => gather(Face::Knit, &[-1, 1]),
             Self::Ssp => gather(Face::Purl, &[-1, 1]),

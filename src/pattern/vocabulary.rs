@@ -232,6 +232,10 @@ pub(crate) const VOCABULARY: &[Entry] = {
             &["p3tog"],
         ),
         phrase(&["sssp"], I::Sssp, &["sssp"]),
+        phrase(&["k4tog", "k 4 tog", "k4 tog"], I::K4tog, &["k4tog"]),
+        phrase(&["p4tog", "p 4 tog", "p4 tog"], I::P4tog, &["p4tog"]),
+        phrase(&["k5tog", "k 5 tog", "k5 tog"], I::K5tog, &["k5tog"]),
+        phrase(&["p5tog", "p 5 tog", "p5 tog"], I::P5tog, &["p5tog"]),
         phrase(
             &[
                 "k2tog tbl",
@@ -625,6 +629,10 @@ mod tests {
             I::Sk2p,
             I::Cdd,
             I::Cddp,
+            I::K4tog,
+            I::P4tog,
+            I::K5tog,
+            I::P5tog,
             I::Bobble,
         ];
         for m in 1..=MAX_CROSS_SIDE {
