@@ -530,6 +530,49 @@ fn repeats_groups_counts_and_spelling() {
     }
 }
 
+/// Two open-ended runs in one row (issue 17's dialect): a run after one that stopped `to last
+/// N sts` works what that one left, less what is worked between and what it leaves in turn,
+/// so each row reads as the row written with that count. A run after one that left nothing
+/// (`to end`, or as much as it leaves itself) is still refused.
+#[test]
+fn a_run_after_one_that_stops_short_works_what_it_left() {
+    for (open, explicit) in [
+        (
+            "Row 1 (RS): *k2, p2; rep from * to last 2 sts, k to end.",
+            "Row 1 (RS): *k2, p2; rep from * to last 2 sts, k2.",
+        ),
+        (
+            "Row 1 (RS): p1, *k2, p2; rep from * to last 3 sts, k2, p to end.",
+            "Row 1 (RS): p1, *k2, p2; rep from * to last 3 sts, k2, p1.",
+        ),
+        (
+            "Row 1 (RS): *k1, p1; rep from * to last 3 sts, k to last st, p1.",
+            "Row 1 (RS): *k1, p1; rep from * to last 3 sts, k2, p1.",
+        ),
+    ] {
+        let rows = "\nRow 2: Purl.";
+        let (a, b) = (
+            ks(&format!("{open}{rows}")),
+            ks(&format!("{explicit}{rows}")),
+        );
+        assert!(same_cells(&a, &b), "{open}\n{}\n{}", a.chart(), b.chart());
+        assert_eq!(a.stitch_counts(), b.stitch_counts(), "{open}");
+    }
+    for (text, needle) in [
+        (
+            "Row 1 (RS): k to end, p to end.",
+            "\"p to end\" inside or after another repeat",
+        ),
+        (
+            "Row 1 (RS): k to last 2 sts, p to last 2 sts.",
+            "\"p to last 2 sts\" inside or after another repeat",
+        ),
+    ] {
+        let e = pattern_error(StitchPattern::from_knitspeak(text));
+        assert!(e.contains(needle), "{text}: {e}");
+    }
+}
+
 #[test]
 fn counts_notes_words_and_numbering_as_patterns_write_them() {
     // Issue 17, bug 2: a stated count after a whole-row phrase is no stitch: `Purl (6 sts)`

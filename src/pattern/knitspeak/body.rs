@@ -398,6 +398,25 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
             }
             El::Fill(s, u, at) => {
                 if stage != 0 {
+                    // A run after one that stopped `to last N sts` works what that one left,
+                    // less the stitches worked between and those it leaves in turn:
+                    // `k to last 2 sts, p to end` is `k to last 2 sts, p2`.
+                    let left = match (&out.repeat, stage) {
+                        (Some((_, Until::Last(n))), 2) => Some(*n),
+                        _ => None,
+                    };
+                    let leaves = match u {
+                        Until::End => Some(0),
+                        Until::Last(m) => Some(m),
+                        Until::Times(_) => None,
+                    };
+                    let worked: usize = out.after.iter().map(|x| x.ins.stitches_in()).sum();
+                    if let (Some(n), Some(m)) = (left, leaves) {
+                        if n > worked + m {
+                            out.after.extend(std::iter::repeat_n(s, n - worked - m));
+                            continue;
+                        }
+                    }
                     let to = match u {
                         Until::Last(1) => "to last st".to_string(),
                         Until::Last(n) => format!("to last {n} sts"),

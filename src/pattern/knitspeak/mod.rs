@@ -22,7 +22,9 @@
 //!   sts, k3` (the stitches after the repeat must be exactly that many), `rep from * 2 more
 //!   times` (a fixed count), stitches before and after the repeat, `[k1, p1] 3 times`, `(yo,
 //!   k1) twice`, `k2tog 3 times`, `k to end` / `k to last 3 sts` / `Knit.` / `Purl.` (a
-//!   one-stitch repeat; also `Purl (6 sts).`), and stitch counts `(18 sts)`: on a row of a
+//!   one-stitch repeat; also `Purl (6 sts).`; after a repeat that stops `to last N sts`, such
+//!   a run works what that one left: `k to last 2 sts, p to end` is `k to last 2 sts, p2`),
+//!   and stitch counts `(18 sts)`: on a row of a
 //!   fixed width the count it leaves, on an all-over row a width the piece can have. Counts
 //!   may be words (`three times`, `to last two sts`, `(six sts)`). A width note in brackets
 //!   (`(multiple of 2 sts, plus 2)`) is read as a note.
