@@ -231,9 +231,10 @@ fn fibre_direction(along: Vec3, out: Vec3, around: f32) -> Vec3 {
 /// anisotropic highlight: unit, perpendicular to the vertex's normal, along the yarn and
 /// slanted round it as the plies' helix through that point runs (slope round the yarn per
 /// unit along it: the point's distance from the centreline, at most the yarn radius, times
-/// [`super::plies::twist_rate`] over the piece's length; an apex pushed out by the fluff
-/// keeps the slant of the yarn's surface). A one-ply yarn slants the same way: its fibres are twisted too. Like the normals they depend only on the centreline, so a culled knit and
-/// every frame of an animated one get them alike.
+/// [`super::plies::twist_rate`] over the span's length; an apex pushed out by the fluff
+/// keeps the slant of the yarn's surface). A one-ply yarn slants the same way: its fibres
+/// are twisted too. Like the normals they depend only on the centreline, so a culled knit
+/// and every frame of an animated one get them alike.
 ///
 /// `points`/`normals`: the centreline and the surface normal under each sample; `owner[i]`:
 /// (course, wale) of the stitch that sample `i` belongs to; `color_of(course, wale)`: the

@@ -408,8 +408,8 @@ impl PyKnit {
     }
 
     /// `(V, 3)` float32 unit shading normals for `surface` in a new pose (the swept tube's,
-    /// out from the yarn's centreline), bit-identical to `build(surface).normals`. With `out`, written there.
-    /// `positions(surface, out, normals_out)` gives both in one pass.
+    /// out from the yarn's centreline), bit-identical to `build(surface).normals`. With
+    /// `out`, written there. `positions(surface, out, normals_out)` gives both in one pass.
     #[pyo3(signature = (surface, out=None))]
     fn normals(
         &self,
