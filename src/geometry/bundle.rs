@@ -285,7 +285,9 @@ pub fn build_bundle(
                 length += (points[0] - points[rings - 1]).length();
                 full_samples
             } else {
-                sample_of(rings - 1) - sample_of(0)
+                // A span of a closed piece may run on past its seam, where the samples'
+                // numbers start again from 0.
+                (sample_of(rings - 1) + full_samples - sample_of(0)) % full_samples.max(1)
             };
             twist_rate(samples, length, settings.samples_per_loop)
         }
@@ -896,6 +898,63 @@ mod tests {
                     "ring {i} point {k}: the tangent leads {step} points round, off the groove"
                 );
             }
+        }
+    }
+
+    /// A span of a closed piece that runs on past the piece's seam (its full-density samples
+    /// 60..63 then 0..3 of 64) slants its fibres as any other span: the samples it spans
+    /// are counted round the seam.
+    #[test]
+    fn a_span_across_a_closed_pieces_seam_slants_its_fibres_as_any_other() {
+        let (n, m) = (64usize, 6usize);
+        let samples: Vec<usize> = (60..64).chain(0..4).collect();
+        let streams = piece_streams(n, |i| stitch_seed(9, 0, i / 16));
+        let draws = FullDensityDraws {
+            samples: &samples,
+            streams: &streams,
+            ring_segments: m,
+        };
+        // Rings a unit apart along x, one full-density sample apart.
+        let points: Vec<Vec3> = (0..samples.len())
+            .map(|i| Vec3::new(i as f32, 0.0, 0.0))
+            .collect();
+        let settings = BundleSettings {
+            radius: 0.25,
+            ring_segments: m,
+            fluffiness: 0.0,
+            color_variation: 0.2,
+            seed: 9,
+            plies: 1,
+            samples_per_loop: 16,
+            two_intervals: true,
+        };
+        let counts = bundle_counts(samples.len(), m, false);
+        let mut positions = vec![0.0; 3 * counts.vertices];
+        let mut normals = vec![0.0; 3 * counts.vertices];
+        let mut tangents = vec![0.0; 3 * counts.vertices];
+        let mut bufs = PieceBuffers::positions_only(&mut positions);
+        bufs.normals = Some(&mut normals);
+        bufs.tangents = Some(&mut tangents);
+        build_bundle(
+            &points,
+            &vec![Vec3::Z; samples.len()],
+            &|i| (0, samples[i] / 16),
+            &|_, _| [0.5, 0.5, 0.5],
+            false,
+            EndTangents::default(),
+            &settings,
+            Some(&draws),
+            &mut bufs,
+        );
+        let at = |buf: &[f32], v: usize| Vec3::from_slice(&buf[3 * v..3 * v + 3]);
+        for v in 0..counts.vertices {
+            let (n, t) = (at(&normals, v), at(&tangents, v));
+            let slope = t.dot(Vec3::X.cross(n)) / t.x;
+            // A quarter turn per unit at the yarn's radius, as on a span that does not wrap.
+            assert!(
+                (slope - 0.25 * std::f32::consts::FRAC_PI_2).abs() < 1e-4,
+                "vertex {v}: slope {slope}"
+            );
         }
     }
 
