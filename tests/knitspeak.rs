@@ -805,6 +805,64 @@ fn errors_name_the_row_the_instruction_the_token_and_a_suggestion() {
     }
 }
 
+/// The stitch-maps stitches knitwear does not knit yet are named for what they are (the
+/// commonest of them, kfb, was once offered as a misspelt "k"), in Knitspeak and in a
+/// chart's legend, with what to do.
+#[test]
+fn stitches_that_change_the_count_are_named_not_misread() {
+    let cases = [
+        (
+            "Row 1 (RS): *k1, kfb; rep from *.\nRow 2: *p1, p2tog; rep from *.",
+            &[
+                "Row 1 (RS), instruction 2",
+                "\"kfb\" knits into the front and then the back",
+                "2 stitches of 1",
+                "yo",
+            ][..],
+        ),
+        (
+            "Row 1: k2, pfb, k2.",
+            &["instruction 2", "\"pfb\"", "2 stitches of 1"],
+        ),
+        (
+            "Row 1: k1, M1L, incr, k1.",
+            &["instruction 3", "\"incr\"", "one new stitch"],
+        ),
+        (
+            "Row 1: k1, 1-to-5 inc, k1.",
+            &["\"1-to-5 inc\"", "5 stitches of 1"],
+        ),
+        ("Row 1: k1, ctr dbl inc, k1.", &["3 stitches of 1"]),
+        (
+            "Row 1: k2, BO 2 sts, k2.",
+            &[
+                "instruction 2",
+                "\"BO 2 sts\" binds stitches off (2)",
+                "binds off each piece at its surface's edges",
+            ],
+        ),
+        ("Row 2: p2, co 2, p2.", &["\"co 2\" casts stitches on (2)"]),
+        (
+            "Row 1: k3, w&t.",
+            &["\"w&t\"", "short rows are not knitted yet"],
+        ),
+        ("Row 1: k3, turn.", &["\"turn\"", "short rows"]),
+        ("Row 1: k1, brk, k1.", &["brioche"]),
+    ];
+    for (text, needles) in cases {
+        let m = pattern_error(StitchPattern::from_knitspeak(text));
+        assert!(!m.contains("did you mean"), "{text:?}: {m}");
+        for needle in needles {
+            assert!(m.contains(needle), "{text:?}: {m}");
+        }
+    }
+    let m = pattern_error(StitchPattern::from_chart("kXk\nkkk\n\nX = kfb"));
+    assert!(
+        m.contains("legend \"X = kfb\": \"kfb\" knits into the front"),
+        "{m}"
+    );
+}
+
 #[test]
 fn charts_with_a_legend() {
     // A legend gives symbols their stitches and overrides the defaults.

@@ -10,7 +10,7 @@
 
 use std::path::Path;
 
-use knitwear::pattern::{reads_stitch, Instruction};
+use knitwear::pattern::{reads_stitch, unknitted, Instruction};
 
 /// Patterns counted (the source's `munge.sh` reports 9,263 lines).
 const PATTERNS: usize = 9_263;
@@ -105,6 +105,54 @@ fn stitch_maps_names_read_as_their_stitches() {
     for name in ["kfb", "bo", "turn", "w&t", "brsl", "drop-st"] {
         assert_eq!(read(name), None, "{name}");
     }
+}
+
+/// The common stitches the reader does not knit because they change a row's stitch count
+/// (or work loops across rows: brioche, dropped stitches) are named for what they are, never
+/// answered with the nearest knitted stitch ("kfb": "did you mean k?").
+#[test]
+fn common_stitches_not_knitted_are_explained() {
+    let all = read_all();
+    let explained = [
+        "kfb",
+        "bo",
+        "co",
+        "turn",
+        "incl",
+        "incr",
+        "pfb",
+        "ctr-dbl-inc",
+        "1-to-5-inc",
+        "w&t",
+        "brsl",
+        "drop-st",
+        "3-to-3-gather",
+        "dip-st",
+        "1-to-7-inc",
+        "inclp",
+        "1-to-4-inc",
+    ];
+    for name in explained {
+        let (_, count, ins) = all
+            .iter()
+            .find(|(n, _, _)| n == name)
+            .unwrap_or_else(|| panic!("{name} is not counted"));
+        assert!(*count >= COMMON, "{name}");
+        assert_eq!(*ins, None, "{name} is read");
+        assert!(
+            unknitted(&knitspeak(name)).is_some(),
+            "{name} is not explained"
+        );
+    }
+    let unexplained: Vec<&str> = all
+        .iter()
+        .filter(|(n, c, ins)| *c >= COMMON && ins.is_none() && unknitted(&knitspeak(n)).is_none())
+        .map(|(n, _, _)| n.as_str())
+        .collect();
+    println!(
+        "common stitches neither read nor explained: {}",
+        unexplained.join(", ")
+    );
 }
 
 /// The README states what this computes: the common stitches the reader knows, and the

@@ -58,6 +58,7 @@ use super::instruction::{Instruction, MAX_CROSS_SIDE};
 use super::knitspeak::{normalised, wrap};
 use super::rows::{cells_from_rows, WrittenRow};
 use super::stitch::{Face, Form};
+use super::unknitted::unknitted;
 use super::vocabulary::{parse_stitch, suggest};
 use super::{Stitch, StitchPattern};
 use crate::error::{KnitError, Result};
@@ -209,10 +210,14 @@ pub fn parse_chart(text: &str) -> Result<StitchPattern> {
                     ))
                 })?,
                 _ => {
-                    return Err(KnitError::Pattern(format!(
-                        "legend \"{line}\": unknown stitch \"{value}\" (did you mean \"{}\"?)",
-                        suggest(value)
-                    )))
+                    return Err(KnitError::Pattern(match unknitted(value) {
+                        Some(why) => format!("legend \"{line}\": {why}"),
+                        None => format!(
+                            "legend \"{line}\": unknown stitch \"{value}\" (did you mean \
+                             \"{}\"?)",
+                            suggest(value)
+                        ),
+                    }))
                 }
             };
             legend.insert(symbol, stitch);

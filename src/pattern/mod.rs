@@ -13,6 +13,7 @@ mod knitspeak;
 mod presets;
 pub mod rows;
 mod stitch;
+mod unknitted;
 mod vocabulary;
 
 pub use chart::parse_chart;
@@ -24,6 +25,7 @@ pub use knitspeak::{looks_like_knitspeak, parse_knitspeak};
 pub use presets::{color_preset, COLOR_PRESETS, FAIR_ISLE_BAND, PRESETS};
 pub use rows::WrittenRow;
 pub use stitch::{Face, Form, Stitch};
+pub use unknitted::unknitted;
 pub use vocabulary::reads_stitch;
 
 use crate::error::{KnitError, Result};

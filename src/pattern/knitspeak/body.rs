@@ -8,6 +8,7 @@ use super::numbers;
 use super::{MAX_BRACKET_DEPTH, MAX_KNITSPEAK_WIDTH};
 use crate::error::{KnitError, Result};
 use crate::pattern::instruction::MAX_CROSS_SIDE;
+use crate::pattern::unknitted::unknitted;
 use crate::pattern::vocabulary::{
     after_repeat_from, is_knit_or_purl_name, parse_stitch, suggest, Stitched,
 };
@@ -463,6 +464,11 @@ fn unknown(what: &str, instruction: usize, token: &str) -> KnitError {
              or more (leave the instruction out)",
             token.trim()
         ));
+    }
+    // A stitch knitwear knows but does not knit (`kfb`, `bo 2`, `w&t`): say what it is, not
+    // which known stitch it is spelled like.
+    if let Some(why) = unknitted(token) {
+        return KnitError::Pattern(format!("{what}, instruction {instruction}: {why}"));
     }
     let closest = suggest(token);
     // A well-formed cross too wide for the vocabulary is "closest" to itself: say why instead.
