@@ -347,6 +347,34 @@ fn twisted_decreases_and_the_purled_centred_decrease_chart() {
     let front = ks("Row 1 (RS): Knit.\nRow 2 (RS): k1, yo, p2tog tbl, k1.");
     assert!(same_cells(&ws, &front), "{}\n{}", ws.chart(), front.chart());
     check_pattern("a twisted decrease from the wrong side", &ws);
+
+    // k3tog tbl (60 stitch-maps patterns) gathers three loops as sssk does, twisted; worked
+    // from the wrong side it shows as p3tog tbl.
+    let p = ks("Row 1 (RS): k1, yo, k3tog tbl, yo, p1, yo, p3tog tbl, yo.\nRow 2 (WS): Purl.");
+    check_pattern("three-loop twisted decreases", &p);
+    let twin = ks("Row 1 (RS): k1, yo, sssk, yo, p1, yo, sssp, yo.\nRow 2 (WS): Purl.");
+    for (col, face) in [(1, Face::Purl), (5, Face::Knit)] {
+        let (ours, theirs) = (p.stitch(0, col), twin.stitch(0, col));
+        assert_eq!(
+            (ours.face, ours.form),
+            (face, Form::Twisted),
+            "column {col}"
+        );
+        assert_eq!(
+            (ours.sources, ours.source_offset),
+            (3, theirs.source_offset)
+        );
+    }
+    for c in 0..p.width() {
+        assert_eq!(
+            p.stitch(1, c),
+            twin.stitch(1, c),
+            "the loops below land alike"
+        );
+    }
+    let ws = ks("Row 1 (RS): Knit.\nRow 2 (WS): p1, yo, k3tog tbl, yo, p1.");
+    let front = ks("Row 1 (RS): Knit.\nRow 2 (RS): k1, yo, p3tog tbl, yo, k1.");
+    assert!(same_cells(&ws, &front), "{}\n{}", ws.chart(), front.chart());
 }
 
 /// `m1lp` and `m1rp` (issue 17's vocabulary, 63 and 43 stitch-maps patterns): worked

@@ -112,6 +112,8 @@ fn from_wrong_side(ws: Instruction) -> Option<Charted> {
         I::P5tog => (I::K5tog, false),
         I::K2togTbl => (I::P2togTbl, false),
         I::P2togTbl => (I::K2togTbl, false),
+        I::K3togTbl => (I::P3togTbl, false),
+        I::P3togTbl => (I::K3togTbl, false),
         I::YarnOver | I::MakeOneLeft | I::MakeOneRight => (ws, false),
         I::Slip { yarn_front } => (
             I::Slip {
@@ -407,6 +409,8 @@ fn candidates() -> Vec<Charted> {
         I::Sssp,
         I::K2togTbl,
         I::P2togTbl,
+        I::K3togTbl,
+        I::P3togTbl,
         I::K4tog,
         I::P4tog,
         I::K5tog,

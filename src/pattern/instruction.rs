@@ -47,6 +47,11 @@ pub enum Instruction {
     K2togTbl,
     /// `p2tog tbl`: [`Self::K2togTbl`] purled.
     P2togTbl,
+    /// `k3tog tbl`: three loops knitted together through their back loops, which leans left
+    /// like [`Self::Sssk`] (the right loop on top), the stitch twisted.
+    K3togTbl,
+    /// `p3tog tbl`: [`Self::K3togTbl`] purled.
+    P3togTbl,
     /// `cddp` (`sl2-p1-p2sso`): [`Self::Cdd`] purled.
     Cddp,
     /// `k4tog`: right-leaning triple decrease, the loops stacked left over right.
@@ -116,6 +121,8 @@ impl Instruction {
             | Self::Sssk
             | Self::P3tog
             | Self::Sssp
+            | Self::K3togTbl
+            | Self::P3togTbl
             | Self::Sk2p
             | Self::Cdd
             | Self::Cddp => 3,
@@ -156,6 +163,8 @@ impl Instruction {
             Self::Sssp => "sssp".into(),
             Self::K2togTbl => "k2tog tbl".into(),
             Self::P2togTbl => "p2tog tbl".into(),
+            Self::K3togTbl => "k3tog tbl".into(),
+            Self::P3togTbl => "p3tog tbl".into(),
             Self::Cddp => "cddp".into(),
             Self::K4tog => "k4tog".into(),
             Self::P4tog => "p4tog".into(),
@@ -240,6 +249,8 @@ impl Instruction {
             Self::Sssp => gather(Face::Purl, &[-1, 0, 1]),
             Self::K2togTbl => gather_as(Face::Knit, Form::Twisted, &[-1, 1]),
             Self::P2togTbl => gather_as(Face::Purl, Form::Twisted, &[-1, 1]),
+            Self::K3togTbl => gather_as(Face::Knit, Form::Twisted, &[-1, 0, 1]),
+            Self::P3togTbl => gather_as(Face::Purl, Form::Twisted, &[-1, 0, 1]),
             // The slipped right loop passed over the k2tog of the other two.
             Self::Sk2p => gather(Face::Knit, &[0, -1, 1]),
             // The centre loop on top of the two passed over it.

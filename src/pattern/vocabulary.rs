@@ -257,6 +257,26 @@ pub(crate) const VOCABULARY: &[Entry] = {
             &["p2tog tbl"],
         ),
         phrase(
+            &[
+                "k3tog tbl",
+                "k3 tog tbl",
+                "k 3 tog tbl",
+                "k3tog through back loops",
+            ],
+            I::K3togTbl,
+            &["k3tog tbl"],
+        ),
+        phrase(
+            &[
+                "p3tog tbl",
+                "p3 tog tbl",
+                "p 3 tog tbl",
+                "p3tog through back loops",
+            ],
+            I::P3togTbl,
+            &["p3tog tbl"],
+        ),
+        phrase(
             &["cddp", "sl2 p1 p2sso", "sl 2 p1 p2sso", "s2 p1 p2sso"],
             I::Cddp,
             &["cddp"],
@@ -626,6 +646,8 @@ mod tests {
             I::Sssp,
             I::K2togTbl,
             I::P2togTbl,
+            I::K3togTbl,
+            I::P3togTbl,
             I::Sk2p,
             I::Cdd,
             I::Cddp,

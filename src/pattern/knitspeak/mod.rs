@@ -37,7 +37,7 @@
 //!   the wrong side: in back on a RS row, in front on a WS row), `yo`, `m1` = `m1l`, `m1r`
 //!   (`m1lp`, `m1rp`: the same new loops), `k2tog`, `ssk` (`skp`), `p2tog`, `ssp`, `k3tog`,
 //!   `sssk`, `p3tog`, `sssp`, `k4tog`, `p4tog`, `k5tog`, `p5tog`, `k2tog tbl`, `p2tog tbl`,
-//!   `sk2p` (`sl1-k2tog-psso`), `cdd` (`s2kp`, `sl2-k1-p2sso`), `cddp` (`sl2-p1-p2sso`), `MB`
+//!   `k3tog tbl`, `p3tog tbl`, `sk2p` (`sl1-k2tog-psso`), `cdd` (`s2kp`, `sl2-k1-p2sso`), `cddp` (`sl2-p1-p2sso`), `MB`
 //!   (bobble), crosses `m/n RC`, `LC`, `RPC`, `LPC` with `m, n` up to 6, `1/1 RT`, `LT`,
 //!   `RPT`, `LPT`, and the aliases `C4B` = `2/2 RC`, `C4F` = `2/2 LC` (any even
 //!   `CnB`/`CnF`), `T2B`/`T2F` = `1/1 RT`/`LT`, `T3B`/`T3F` = `2/1 RPC`/`LPC`,

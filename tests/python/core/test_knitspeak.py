@@ -105,6 +105,16 @@ def test_chart_errors_are_pattern_errors() -> None:
             "Row 1 (RS): p1, yo, ssp, p1.\nRow 2 (WS): Knit.",
             0.75,
         ),
+        (  # k3tog tbl leans left as sssk does, twisted; p3tog tbl is its wrong-side twin
+            "Row 1 (RS): k1, yo, k3tog tbl, yo, k1.\nRow 2 (WS): Purl.",
+            "Row 1 (RS): k1, yo, sssk, yo, k1.\nRow 2 (WS): Purl.",
+            0.75,
+        ),
+        (
+            "Row 1 (RS): p1, yo, p3tog tbl, yo, p1.\nRow 2 (WS): Knit.",
+            "Row 1 (RS): k1, yo, k3tog tbl, yo, k1.\nRow 2 (WS): Purl.",
+            0.75,
+        ),
         (
             "Row 1 (RS): p1, yo, cddp, yo, p1.\nRow 2 (WS): Knit.",
             "Row 1 (RS): k1, yo, cdd, yo, k1.\nRow 2 (WS): Purl.",
@@ -126,15 +136,25 @@ def test_chart_errors_are_pattern_errors() -> None:
             0.75,
         ),
     ],
-    ids=["p3tog-sssp", "k2tog-tbl", "p2tog-tbl", "cddp", "k4tog", "k5tog", "p5tog"],
+    ids=[
+        "p3tog-sssp",
+        "k2tog-tbl",
+        "p2tog-tbl",
+        "k3tog-tbl",
+        "p3tog-tbl",
+        "cddp",
+        "k4tog",
+        "k5tog",
+        "p5tog",
+    ],
 )
 def test_new_decreases_knit_interlocked_as_well_as_their_twins(
     new: str, twin: str, floor: float
 ) -> None:
-    """The decreases issue 17's vocabulary added (p3tog, sssp, k2tog tbl, p2tog tbl, cddp,
-    k4tog, k5tog, p5tog) knit: lace of them on a sheet interlocks at every crossing, leaves
-    no free loop, and clears nearly as well as the same lace of the stitch each one purls,
-    twists or gathers one loop more than."""
+    """The decreases issue 17's vocabulary added (p3tog, sssp, k2tog tbl, p2tog tbl, k3tog tbl,
+    p3tog tbl, cddp, k4tog, k5tog, p5tog) knit: lace of them on a sheet interlocks at every
+    crossing, leaves no free loop, and clears nearly as well as the same lace of the stitch each
+    one purls, twists or gathers one loop more than."""
     import numpy as np
 
     u, v = np.meshgrid(np.linspace(0, 1, 24), np.linspace(0, 1, 24))
@@ -151,6 +171,6 @@ def test_new_decreases_knit_interlocked_as_well_as_their_twins(
         assert stats["free_loops"] == (0, 0), text
         clearance.append(stats["clearance_min"])
     # (Measured, new / twin: p3tog-sssp 0.166 / 0.181, k2tog tbl 0.680 / 0.652, p2tog tbl
-    # 0.477 / 0.605, cddp 0.209 / 0.177, k4tog 0.183 / 0.200, k5tog 0.136 / 0.200, p5tog
-    # 0.134 / 0.136.)
+    # 0.477 / 0.605, k3tog tbl 0.270 / 0.199, p3tog tbl 0.336 / 0.270, cddp 0.209 / 0.177,
+    # k4tog 0.183 / 0.200, k5tog 0.136 / 0.200, p5tog 0.134 / 0.136.)
     assert clearance[0] >= floor * clearance[1], clearance
