@@ -818,7 +818,15 @@ fn errors_name_the_row_the_instruction_the_token_and_a_suggestion() {
         ("Row 1: k2, rep from *.", &["no '*'"]),
         (
             "Row 1: *k2, p2; rep from * to last 3 sts, k2.",
-            &["to last 3 sts", "2 stitches"],
+            &[
+                "to last 3 sts",
+                "leaving 3 stitches, but 2 stitches follow it",
+            ],
+        ),
+        // Echoes the knitter's words (it once said "to last 1 sts" here).
+        (
+            "Row 1: Purl to last st.",
+            &["\"to last st\", leaving 1 stitch, but no stitches follow it"],
         ),
         ("Row 1: [k1, p1 3 times.", &["never closed"]),
         ("Row 1: Knit.\nRow 3: Knit.", &["row 2 has no instructions"]),

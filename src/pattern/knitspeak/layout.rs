@@ -79,8 +79,17 @@ pub(super) fn lay_out(rows: &[RowPlan]) -> Result<StitchPattern> {
             if let Until::Last(n) = until {
                 let after = row.ins_in(&row.body.after);
                 if after != *n {
+                    let (to, left) = match n {
+                        1 => ("to last st".to_string(), "1 stitch".to_string()),
+                        n => (format!("to last {n} sts"), format!("{n} stitches")),
+                    };
+                    let follow = match after {
+                        0 => "no stitches follow it: write what is worked in them".to_string(),
+                        1 => "1 stitch follows it".to_string(),
+                        a => format!("{a} stitches follow it"),
+                    };
                     return Err(KnitError::Pattern(format!(
-                        "{}: the repeat runs \"to last {n} sts\" but {after} stitches follow it",
+                        "{}: the repeat runs \"{to}\", leaving {left}, but {follow}",
                         row.what
                     )));
                 }
