@@ -841,6 +841,74 @@ fn errors_name_the_row_the_instruction_the_token_and_a_suggestion() {
     }
 }
 
+/// A pattern's width note (issue 17: "every row's count matches the count the text
+/// states") is checked against the widths its rows fit: a note they disagree with means the
+/// rows or the note were copied wrong, and is refused naming both, never knitted past.
+#[test]
+fn width_notes_are_checked_against_the_rows() {
+    let rib = "Row 1 (RS): k2, *p2, k2; rep from *.\nRow 2: p2, *k2, p2; rep from *.";
+    for note in [
+        "(multiple of 4 sts, plus 2)",
+        "Multiple of 4 sts plus 2.",
+        "(a multiple of 8 sts + 6)",
+        "(worked over 14 sts)",
+    ] {
+        assert_eq!(chart(&format!("{note}\n{rib}")), chart(rib), "{note}");
+    }
+    // Written in a row, as stitch-maps does.
+    let in_row = "Row 1 (RS): k2, *p2, k2; rep from * (multiple of 4 sts, plus 2).\nRow 2: Purl.";
+    assert_eq!(
+        chart(in_row),
+        chart("Row 1 (RS): k2, *p2, k2; rep from *.\nRow 2: Purl.")
+    );
+    for (note, says, needs) in [
+        (
+            "(multiple of 5 sts plus 2)",
+            "a multiple of 5 stitches plus 2",
+            "a multiple of 4 stitches plus 2",
+        ),
+        (
+            "Multiple of 4 sts.",
+            "a multiple of 4 stitches",
+            "a multiple of 4 stitches plus 2",
+        ),
+        (
+            "(worked over 12 sts)",
+            "12 stitches",
+            "a multiple of 4 stitches plus 2",
+        ),
+    ] {
+        let m = pattern_error(StitchPattern::from_knitspeak(&format!("{note}\n{rib}")));
+        assert!(
+            m.contains(&format!(
+                "says the pattern is worked over {says}, but its rows need {needs}"
+            )),
+            "{note}: {m}"
+        );
+    }
+    let m = pattern_error(StitchPattern::from_knitspeak(
+        "Row 1 (RS): *k2, p2; rep from * (multiple of 3 sts).\nRow 2: Purl.",
+    ));
+    assert!(m.contains("Row 1 (RS) (multiple of 3 sts)"), "{m}");
+    // A panel: the note gives its width.
+    let panel = "Row 1 (RS): p2, k4, p2.\nRow 2: k2, p4, k2.";
+    assert_eq!(
+        chart(&format!("(worked over 8 sts)\n{panel}")),
+        chart(panel)
+    );
+    let m = pattern_error(StitchPattern::from_knitspeak(&format!(
+        "(worked over 10 sts)\n{panel}"
+    )));
+    assert!(m.contains("but its rows need 8 stitches"), "{m}");
+    // A note with more in it than a width stays an unread note.
+    assert_eq!(
+        chart(&format!(
+            "(multiple of 5 sts plus 2; a 2-row repeat)\n{rib}"
+        )),
+        chart(rib)
+    );
+}
+
 /// The stitch-maps stitches knitwear does not knit yet are named for what they are (the
 /// commonest of them, kfb, was once offered as a misspelt "k"), in Knitspeak and in a
 /// chart's legend, with what to do.

@@ -32,6 +32,9 @@ pub(super) struct Body {
     pub after: Vec<Stitched>,
     /// `(18 sts)`
     pub count: Option<usize>,
+    /// Width notes written in it (`(multiple of 2 sts, plus 2)`), as text, for the layout to
+    /// check ([`super::width_note`]).
+    pub notes: Vec<String>,
 }
 
 /// One element of a body, in the order written.
@@ -57,6 +60,8 @@ struct BodyParser<'a> {
     stop: bool,
     /// The body is one phrase (`Knit.`): a bare `k` or `knit` fills the row.
     single: bool,
+    /// Width notes met, as text.
+    notes: Vec<String>,
 }
 
 /// `3 times`, `three times`, `twice`, `once`, `3x` -> the count.
@@ -210,6 +215,24 @@ impl BodyParser<'_> {
         Err(self.err(&open.to_string(), "this bracket is never closed"))
     }
 
+    /// The text of tokens `from..to`, separators as commas.
+    fn texts(&self, from: usize, to: usize) -> String {
+        let mut out = String::new();
+        for t in &self.toks[from..to] {
+            match t {
+                Tok::Text(t) => {
+                    if !out.is_empty() && !out.ends_with(", ") {
+                        out.push(' ');
+                    }
+                    out.push_str(t.trim());
+                }
+                Tok::Sep => out.push_str(", "),
+                _ => {}
+            }
+        }
+        out
+    }
+
     fn err(&self, token: &str, why: &str) -> KnitError {
         KnitError::Pattern(format!(
             "{}, instruction {} (\"{token}\"): {why}",
@@ -243,7 +266,10 @@ impl BodyParser<'_> {
                     // `(multiple of 2 sts, plus 2)`: says what the chart's repeat does anyway.
                     if let Some(Tok::Text(t)) = self.peek() {
                         if width_note(t.trim().to_lowercase().as_str()) {
+                            let from = self.at;
                             self.skip_to_close(c)?;
+                            let note = self.texts(from, self.at);
+                            self.notes.push(note);
                             continue;
                         }
                     }
@@ -303,6 +329,11 @@ impl BodyParser<'_> {
         .iter()
         .any(|w| lower.starts_with(w))
         {
+            if width_note(lower) {
+                // The sentence runs to the body's end: `Multiple of 4 sts, plus 2.`
+                let note = self.texts(self.at.saturating_sub(1), self.toks.len());
+                self.notes.push(note);
+            }
             self.stop = true;
             return Ok(());
         }
@@ -357,6 +388,7 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
         what,
         instruction: 0,
         stop: false,
+        notes: Vec::new(),
     };
     let els = p.list(None, 0)?;
     let mut out = Body {
@@ -364,6 +396,7 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
         repeat: None,
         after: Vec::new(),
         count: None,
+        notes: std::mem::take(&mut p.notes),
     };
     // 0: before the repeat, 1: inside it, 2: after it.
     let mut stage = 0;

@@ -4,6 +4,7 @@
 //! shares: [`normalised`], [`wrap`], [`lcm`].
 
 use super::body::{Body, Until};
+use super::width_note::WidthNote;
 use super::MAX_KNITSPEAK_WIDTH;
 use crate::error::{KnitError, Result};
 use crate::pattern::instruction::Instruction;
@@ -66,7 +67,9 @@ impl RowPlan<'_> {
 }
 
 /// Lays the rows out on a piece and cuts one repeat (see the module docs of [`super`]).
-pub(super) fn lay_out(rows: &[RowPlan]) -> Result<StitchPattern> {
+/// `widths`: the text's width notes, each with where it was written, which the widths the
+/// rows fit must agree with.
+pub(super) fn lay_out(rows: &[RowPlan], widths: &[(String, WidthNote)]) -> Result<StitchPattern> {
     for row in rows {
         if let Some((unit, until)) = &row.body.repeat {
             let w = row.ins_in(unit);
@@ -104,6 +107,15 @@ pub(super) fn lay_out(rows: &[RowPlan]) -> Result<StitchPattern> {
                 "{}: {n} stitches is wider than the {MAX_KNITSPEAK_WIDTH} a chart may be",
                 fixed.what
             )));
+        }
+        for (note, w) in widths {
+            let agrees = match *w {
+                WidthNote::Over(m) => m == n,
+                WidthNote::Multiple { multiple, plus } => n >= plus && (n - plus) % multiple == 0,
+            };
+            if !agrees {
+                return Err(disagreeing_note(note, *w, &format!("{n} stitches")));
+            }
         }
         let mut written = Vec::with_capacity(rows.len());
         for row in rows {
@@ -178,6 +190,19 @@ pub(super) fn lay_out(rows: &[RowPlan]) -> Result<StitchPattern> {
             b.describe_width()
         )));
     };
+    for (note, w) in widths {
+        let agrees = match *w {
+            WidthNote::Over(m) => m % width == n0,
+            WidthNote::Multiple { multiple, plus } => multiple % width == 0 && plus % width == n0,
+        };
+        if !agrees {
+            let rows_need = match n0 {
+                0 => format!("a multiple of {width} stitches"),
+                e => format!("a multiple of {width} stitches plus {e}"),
+            };
+            return Err(disagreeing_note(note, *w, &rows_need));
+        }
+    }
     // Stitch counts per repeat, with the row-balance messages of `rows`.
     let per_repeat: Vec<WrittenRow> = rows
         .iter()
@@ -350,6 +375,15 @@ pub(crate) fn wrap(d: i64, width: usize) -> i8 {
         d -= w;
     }
     d as i8
+}
+
+/// A width note the rows do not fit: the note, what it says and what the rows need.
+fn disagreeing_note(note: &str, says: WidthNote, rows_need: &str) -> KnitError {
+    KnitError::Pattern(format!(
+        "\"{note}\" says the pattern is worked over {}, but its rows need {rows_need}: \
+         check the rows and the note against the pattern as printed",
+        says.describe()
+    ))
 }
 
 /// The least common multiple of two repeat widths.

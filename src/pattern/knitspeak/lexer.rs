@@ -65,6 +65,10 @@ pub(super) fn statements(text: &str) -> Statements {
     for line in text.lines() {
         let mut rest = line.trim();
         if out.is_empty() && title(rest) {
+            // `(multiple of 4 sts, plus 2)` opening a pattern is a note the layout checks.
+            if super::width_note::read(rest).is_some() {
+                notes.push(rest.to_string());
+            }
             continue;
         }
         while !rest.is_empty() {

@@ -6,9 +6,11 @@
 //! - Row headers: `Row 1 (RS):`, `Row 2:`, `Rows 2, 3, and 4:`, `Rows 5-8:`, `Rnd 1:` /
 //!   `Rnds 1 and 2:` / `Round 3:` (in the round every row is worked from the right side),
 //!   `All WS rows:`, `All RS rows:`, `All even-numbered rows:`. Statements may share a line
-//!   (`Row 1: Knit. Row 2: Purl.`). `Multiple of 6 sts plus 5.` lines are accepted and
-//!   ignored: the chart repeats anyway. So is `Repeat rows 1-4.` (also `Repeat row 1`,
-//!   `Rep rows 1 and 2 for pattern`) where it repeats every row given; one that repeats only
+//!   (`Row 1: Knit. Row 2: Purl.`). A width note (`Multiple of 6 sts plus 5.`, `(multiple
+//!   of 2 sts, plus 2)` in a row or opening the text, `(worked over 12 sts)`) is checked
+//!   against the widths the rows fit, and one they disagree with is an error naming both
+//!   ([`width_note`]); a note with more in it stays an unread note. `Repeat rows 1-4.` is
+//!   accepted (also `Repeat row 1`, `Rep rows 1 and 2 for pattern`) where it repeats every row given; one that repeats only
 //!   some (`Repeat rows 7-18.` after six set-up rows) is an error that says so, since the
 //!   rows outside it are knitted once and the chart repeats all its rows. Each row number
 //!   may be given once. Title lines in parentheses before the first row (`(Seed stitch)`)
@@ -27,7 +29,7 @@
 //!   and stitch counts `(18 sts)`: on a row of a
 //!   fixed width the count it leaves, on an all-over row a width the piece can have. Counts
 //!   may be words (`three times`, `to last two sts`, `(six sts)`). A width note in brackets
-//!   (`(multiple of 2 sts, plus 2)`) is read as a note.
+//!   is a note, not stitches.
 //! - Edges: the stitches outside an all-over row's repeat are not knitted (see below), so
 //!   edge shaping there (`ssk, k to last st, m1r, k1`) is an error that says so, never
 //!   dropped without a word.
@@ -84,6 +86,7 @@ mod headers;
 mod layout;
 mod lexer;
 mod numbers;
+mod width_note;
 
 pub(crate) use layout::{lcm, normalised, wrap};
 
@@ -91,6 +94,7 @@ use self::body::parse_body;
 use self::headers::{parse_header, RowSheet};
 use self::layout::{lay_out, RowPlan};
 use self::lexer::{after_titles, opens_statement, statements};
+use self::width_note::WidthNote;
 use super::StitchPattern;
 use crate::error::{KnitError, Result};
 
@@ -125,6 +129,19 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
     for note in &lexed.notes {
         headers::check_repeat_note(note, sheet.first(), sheet.height())?;
     }
+    // Width notes, the text's own and those written in rows, with where each was written.
+    let mut widths: Vec<(String, WidthNote)> = lexed
+        .notes
+        .iter()
+        .filter_map(|n| width_note::read(n).map(|w| (n.trim().to_string(), w)))
+        .collect();
+    for (what, body) in &bodies {
+        for n in &body.notes {
+            if let Some(w) = width_note::read(n) {
+                widths.push((format!("{what} ({n})"), w));
+            }
+        }
+    }
     let rows: Vec<RowPlan> = sheet
         .plan()?
         .into_iter()
@@ -135,7 +152,7 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
             body: &bodies[index].1,
         })
         .collect();
-    lay_out(&rows)
+    lay_out(&rows, &widths)
 }
 
 /// Whether `text` looks like Knitspeak rather than a symbol chart: it starts with a row header.
