@@ -717,6 +717,22 @@ fn edge_shaping_is_refused_never_dropped() {
     );
     // A panel keeps its edges, shaping included: its count is checked as a whole.
     assert!(StitchPattern::from_knitspeak("Row 1 (RS): ssk, k3, yo, k1.\nRow 2: Purl.").is_ok());
+    // Lace that ends a row on part of its repeat balances the yo's and decreases there: that
+    // shapes nothing (it was refused as edge shaping; arrowhead and herringbone lace of the
+    // corpus, tests/data/corpus, end rows so).
+    let part = "Row 1 (RS): K2, *yo, sk2p, yo, k3; rep from * to last 5 sts, yo, sk2p, yo, k2.\n\
+                Row 2: Purl.";
+    let whole = "Row 1 (RS): *yo, sk2p, yo, k3; rep from *.\nRow 2: Purl.";
+    assert!(same_up_to_shift(&ks(part), &ks(whole)), "{}", chart(part));
+    // One edge balanced and the other not is still edge shaping.
+    let m = pattern_error(StitchPattern::from_knitspeak(
+        "Row 1 (RS): yo, ssk, *k1, p1; rep from * to last 2 sts, k2tog.\nRow 2: Purl.",
+    ));
+    assert!(m.contains("\"k2tog\"") && m.contains("edge shaping"), "{m}");
+    assert!(
+        !m.contains("\"ssk\""),
+        "the balanced edge is not named: {m}"
+    );
 }
 
 #[test]

@@ -291,17 +291,23 @@ pub(super) fn lay_out(rows: &[RowPlan], widths: &[(String, WidthNote)]) -> Resul
 /// surface's outline gives the fabric its shape), and dropping it without a word would knit
 /// something else than the text says.
 fn check_no_edge_shaping(row: &RowPlan) -> Result<()> {
-    let shaping: Vec<String> = row
-        .body
-        .before
-        .iter()
-        .chain(&row.body.after)
+    // An edge that balances its own yarn-overs and decreases (a lace row ending in a part
+    // repeat, `to last 5 sts, yo, sk2p, yo, k2`) keeps the count: it shapes nothing.
+    let balances = |edge: &[Stitched]| {
+        let sum = |f: fn(Instruction) -> usize| edge.iter().map(|s| f(s.ins)).sum::<usize>();
+        sum(Instruction::stitches_in) == sum(Instruction::stitches_out)
+    };
+    if balances(&row.body.before) && balances(&row.body.after) {
+        return Ok(());
+    }
+    let unbalanced = |edge: &'_ Vec<Stitched>| !balances(edge);
+    let shaping: Vec<String> = [&row.body.before, &row.body.after]
+        .into_iter()
+        .filter(|e| unbalanced(e))
+        .flatten()
         .filter(|s| s.ins.stitches_in() != s.ins.stitches_out())
         .map(|s| s.ins.name())
         .collect();
-    if shaping.is_empty() {
-        return Ok(());
-    }
     let mut names: Vec<String> = Vec::new();
     for n in shaping {
         if !names.contains(&n) {
