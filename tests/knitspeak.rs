@@ -27,7 +27,7 @@ fn chart(text: &str) -> String {
     ks(text).chart()
 }
 
-fn pattern_error(result: Result<StitchPattern, KnitError>) -> String {
+fn pattern_error<T: std::fmt::Debug>(result: Result<T, KnitError>) -> String {
     match result {
         Err(KnitError::Pattern(m)) => m,
         other => panic!("not a pattern error: {other:?}"),
@@ -1066,4 +1066,35 @@ fn a_chart_knows_which_of_its_columns_cut_a_stitch_across_its_edge() {
     let lace = StitchPattern::from_chart("kkkk\n/Okk").unwrap();
     assert!((0..4).any(|c| lace.cuts_at_column(c) > 0));
     assert!((0..4).all(|c| ks("Rnd 1: *k2, p2; rep from *.").cuts_at_column(c) == 0));
+}
+
+/// A stitch slipped in two consecutive rows would carry its loop up two rows, which the
+/// skeleton does not build (a slipped loop rises one): the pattern reads and charts, but
+/// knitting it is refused naming the rows and the column. Slips in alternate rows (heel
+/// stitch) or columns (linen stitch), and every preset, knit.
+#[test]
+fn slips_in_consecutive_rows_are_refused_at_the_knit() {
+    let columns = ks(
+        "Row 1 (RS): K1, *sl1 wyib, k3; rep from * to last 2 sts, sl1 wyib, k1.\n\
+                      Row 2: P1, *sl1 wyif, p3; rep from * to last 2 sts, sl1 wyif, p1.",
+    );
+    let m = pattern_error(columns.check_knittable());
+    assert!(
+        m.contains("chart row 2 slips the stitch that chart row 1 slipped")
+            && m.contains("consecutive rows"),
+        "{m}"
+    );
+    for ok in [
+        "Row 1 (RS): *Sl1 wyib, k1; rep from *.\nRow 2: Purl.",
+        "Row 1 (RS): *K1, sl1 wyif; rep from *.\nRow 2: *P1, sl1 wyib; rep from *.",
+    ] {
+        ks(ok)
+            .check_knittable()
+            .unwrap_or_else(|e| panic!("{ok:?}: {e}"));
+    }
+    for name in StitchPattern::presets() {
+        let p = StitchPattern::preset(name).unwrap();
+        p.check_knittable()
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
 }

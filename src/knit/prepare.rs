@@ -158,6 +158,7 @@ impl PreparedKnit {
     /// lattice and checks the output against the budget (before anything large is allocated).
     pub fn new(surface: &dyn Surface, pattern: &StitchPattern, p: &KnitParams) -> Result<Self> {
         validate(p)?;
+        pattern.check_knittable()?;
         let (len_u, len_v) = surface.extent();
         if !(len_u.is_finite() && len_v.is_finite() && len_u > 0.0 && len_v > 0.0) {
             return Err(KnitError::Surface(format!(

@@ -259,6 +259,39 @@ impl StitchPattern {
         p
     }
 
+    /// Refuses what the skeleton cannot knit as the pattern says, naming where: a loop
+    /// slipped in two consecutive rows (slip columns, mosaic knitting). A slipped stitch
+    /// carries the loop below it up over one row ([`Stitch::rise`] is 0 or 1); slipped again,
+    /// the loop would rise two, which is not built, and knitting on would make another
+    /// fabric with a stitch pulled through no loop. The pattern still reads and charts.
+    pub fn check_knittable(&self) -> Result<()> {
+        let (w, h) = (self.width(), self.height());
+        // The wrap (row 1 over the last row) last: a pair within the chart reads plainer.
+        for r in (1..h).chain(0..1) {
+            let below = (r + h - 1) % h;
+            for c in 0..w {
+                let cell = self.stitch(r, c);
+                if !matches!(cell.form, Form::Slip { .. }) {
+                    continue;
+                }
+                let src = (c as isize + isize::from(cell.source_offset)).rem_euclid(w as isize);
+                if matches!(self.stitch(below, src as usize).form, Form::Slip { .. }) {
+                    return Err(KnitError::Pattern(format!(
+                        "chart row {} slips the stitch that chart row {} slipped (column {} \
+                         from the left, rows counted from the bottom, as seen on the right \
+                         side): knitwear carries a slipped loop up over one row, not two, so it \
+                         does not knit a stitch slipped in consecutive rows yet (slip columns, \
+                         mosaic knitting)",
+                        r + 1,
+                        below + 1,
+                        c + 1
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Whether any loop crosses or is gathered with another (a cable, a decrease).
     pub fn has_crossings(&self) -> bool {
         self.cells

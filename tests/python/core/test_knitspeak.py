@@ -174,3 +174,23 @@ def test_new_decreases_knit_interlocked_as_well_as_their_twins(
     # 0.477 / 0.605, k3tog tbl 0.270 / 0.199, p3tog tbl 0.336 / 0.270, cddp 0.209 / 0.177,
     # k4tog 0.183 / 0.200, k5tog 0.136 / 0.200, p5tog 0.134 / 0.136.)
     assert clearance[0] >= floor * clearance[1], clearance
+
+
+def test_a_stitch_slipped_in_consecutive_rows_is_refused_at_the_knit() -> None:
+    """A loop slipped in two rows running would rise two rows, which the skeleton does not
+    build: the pattern reads and charts, and knitting it raises a PatternError naming the
+    chart rows, never a fabric with a stitch pulled through no loop."""
+    import numpy as np
+
+    pattern = knitwear.Pattern.from_knitspeak(
+        "Row 1 (RS): K1, *sl1 wyib, k3; rep from * to last 2 sts, sl1 wyib, k1.\n"
+        "Row 2: P1, *sl1 wyif, p3; rep from * to last 2 sts, sl1 wyif, p1."
+    )
+    assert "sl1" in pattern.chart()
+    u, v = np.meshgrid(np.linspace(0, 1, 8), np.linspace(0, 1, 8))
+    pos = np.stack([u * 0.05, v * 0.05, np.zeros_like(u)], axis=-1).astype(np.float32)
+    nrm = np.zeros_like(pos)
+    nrm[..., 2] = 1.0
+    sheet = knitwear.GridSurface(pos, nrm)
+    with pytest.raises(knitwear.PatternError, match=r"chart row 2 slips the stitch.*chart row 1"):
+        knitwear.knit(sheet, pattern)
