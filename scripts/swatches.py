@@ -5,8 +5,11 @@ contact sheet:
 
     .venv/bin/python scripts/swatches.py [--zip dist/knitwear-0.1.0.zip] [--out docs/swatches]
     .venv/bin/python scripts/swatches.py --patterns cable_c4 bobbles   # just these (no gallery)
+    .venv/bin/python scripts/swatches.py --files tests/data/corpus/braid.ks ... --out docs/corpus
 
 Writes `<out>/<preset>.png` (256 x 256 px) and, when every preset is rendered, `<out>/gallery.png`.
+With `--files`, Knitspeak or chart files are knitted instead (the add-on's Pattern > From File),
+each named by its file's stem, and the gallery holds them all.
 Each swatch is a whole number of pattern repeats, at least two each way and at least 16 stitches
 wide, and about square on the page (the default gauge, 20 x 28 per 10 cm). `fair_isle` is worn in
 the Fair Isle colour chart `ColorPattern.preset("fair_isle_band", ...)`, passed to the add-on as
@@ -55,6 +58,7 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--out", type=Path, default=ROOT / "docs" / "swatches")
     parser.add_argument("--zip", type=Path, help="extension zip (default: newest dist/*.zip)")
     parser.add_argument("--patterns", nargs="+", help="presets (default: all of them)")
+    parser.add_argument("--files", nargs="+", type=Path, help="pattern files instead of presets")
     parser.add_argument("--size", type=int, default=256, help="swatch image size, px")
     return parser.parse_args()
 
@@ -68,11 +72,12 @@ def swatch_counts(width: int, height: int) -> tuple[int, int]:
     return wales, courses
 
 
-def repeat_of(name: str) -> tuple[int, int]:
-    """The repeat (stitches, rows) of preset `name`, with its colour chart's where it has one."""
+def repeat_of(name: str, file: Path | None = None) -> tuple[int, int]:
+    """The repeat (stitches, rows) of preset `name` (or of the pattern in `file`), with its
+    colour chart's where it has one."""
     import knitwear
 
-    pattern = knitwear.Pattern.preset(name)
+    pattern = knitwear.Pattern.from_file(file) if file else knitwear.Pattern.preset(name)
     w, h = pattern.width, pattern.height
     if name in COLOUR_CHARTS:
         _, cw, ch = COLOUR_CHARTS[name]
@@ -139,22 +144,27 @@ def lighting() -> None:
     bpy.context.scene.world = world
 
 
-def render_swatch(name: str, png: Path, size: int = 256) -> dict[str, Any]:
-    """Knit preset `name` on a flat swatch (`swatch_counts`) in an empty scene and render it to
-    `png` (`size` px square). Needs the extension installed and enabled; returns the counts,
-    stitches, triangles and seconds."""
+def render_swatch(
+    name: str, png: Path, size: int = 256, file: Path | None = None
+) -> dict[str, Any]:
+    """Knit preset `name` (or the pattern in `file`) on a flat swatch (`swatch_counts`) in an
+    empty scene and render it to `png` (`size` px square). Needs the extension installed and
+    enabled; returns the counts, stitches, triangles and seconds."""
     import bpy
     from bl_ext.user_default.knitwear import api
 
     bpy.ops.wm.read_homefile(use_empty=True)
     workbench(size, size, png)
     lighting()
-    wales, courses = swatch_counts(*repeat_of(name))
+    wales, courses = swatch_counts(*repeat_of(name, file))
     width, height = wales * STITCH_W, courses * STITCH_H
     source = sheet_source(width, height)
     # A margin round the swatch for its cast-on and bind-off, which hang past the border.
     top_camera(1.12 * max(width, height))
     colours: dict[str, Any] = {"color_mode": "SINGLE", "color_1": YARN}
+    chosen: dict[str, Any] = (
+        {"pattern": "FILE", "pattern_file": str(file)} if file else {"pattern": name}
+    )
     if name in COLOUR_CHARTS:
         colours = {
             "color_mode": "CHART",
@@ -165,7 +175,7 @@ def render_swatch(name: str, png: Path, size: int = 256) -> dict[str, Any]:
     t0 = time.perf_counter()
     outcome = api.knit(
         source,
-        pattern=name,
+        **chosen,
         size_mode="COUNTS",
         courses=courses,
         wales=wales,
@@ -216,13 +226,14 @@ def main() -> None:
 
     check_fair_isle_chart()
     presets = knitwear.Pattern.presets()
-    names = args.patterns or presets
+    files = {f.stem: f.resolve() for f in args.files or []}
+    names = list(files) or args.patterns or presets
     t0 = time.perf_counter()
     for name in names:
-        info = render_swatch(name, args.out / f"{name}.png", args.size)
+        info = render_swatch(name, args.out / f"{name}.png", args.size, files.get(name))
         print(f"{name:20s} {info['wales']:3d} x {info['courses']:3d} stitches "
               f"{info['triangles']:>9,} triangles {info['seconds']:5.1f} s")
-    if set(names) == set(presets):
+    if files or set(names) == set(presets):
         print(f"swatches: gallery -> {gallery(names, args.out, args.size)}")
     print(f"swatches: {len(names)} presets in {time.perf_counter() - t0:.1f} s -> {args.out}")
 
