@@ -219,3 +219,44 @@ fn the_edges_come_no_closer_than_the_fabric_itself() {
     assert_eq!(order.interlock_agree, order.interlock_decided, "{order:?}");
     assert_eq!((order.free_loops, order.free_feet), (0, 0), "{order:?}");
 }
+
+/// A bind-off is worked as the pattern's next row in the row above the last course, where
+/// that course's heads reach: its heights follow that row, not the last course's own tile.
+/// Under a 3/3 cable's crossing row the lattice stretches the row below the cable to twice
+/// its height at the cable's edges (src/lattice/row_heights.rs), and a chain scaled by it
+/// passed over the next bind-off loop instead of round its leg: the first loop of each
+/// repeat was left unheld when the last course was the row under the crossing. Every phase
+/// of the 8-row repeat ends in a bind-off that holds every loop.
+#[test]
+fn a_bind_off_holds_every_loop_at_every_phase_of_a_cable() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/corpus/cable-6.ks"
+    ))
+    .unwrap();
+    let pattern = StitchPattern::from_text(&text).unwrap();
+    let wales = 2 * pattern.width() + 3;
+    let mut failures = Vec::new();
+    for courses in 2 * pattern.height()..3 * pattern.height() {
+        // One stitch size for every phase, so every knit shares one tuning.
+        let sheet = PlaneSurface {
+            width: 0.005 * wales as f32,
+            height: 0.0035 * courses as f32,
+        };
+        let p = KnitParams {
+            threads: Some(2),
+            courses: Some(courses),
+            wales: Some(wales),
+            ..KnitParams::default()
+        };
+        let knit = PreparedKnit::new(&sheet, &pattern, &p).unwrap();
+        let order = knit.crossing_order(&sheet).unwrap();
+        if (order.free_loops, order.free_feet) != (0, 0) || order.agree != order.decided {
+            failures.push(format!(
+                "{courses} courses: {} free loops, {} free feet, {}/{} crossings agree",
+                order.free_loops, order.free_feet, order.agree, order.decided
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
