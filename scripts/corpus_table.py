@@ -1,7 +1,7 @@
 """Prints the README's corpus table: each written pattern of tests/data/knitspeak and
-tests/data/corpus, whether it parses, its repeat, the interlock, free loops and minimum
-clearance on the sheet and the tube of `tests/python/core/test_corpus.py`, and its first
-knit's time (the sheet, which tunes the pattern; the tube then reuses the tuning).
+tests/data/corpus, whether it parses, its repeat, the interlock and minimum clearance on the
+sheet and the tube of `tests/python/core/test_corpus.py`, and its first knit's time (the
+sheet, which tunes the pattern; the tube then reuses the tuning).
 
     PYTHONPATH=build/site .venv/bin/python scripts/corpus_table.py
 """
@@ -21,17 +21,17 @@ from test_corpus import FILES, sheet, tube  # noqa: E402
 
 def main() -> None:
     print(
-        "| pattern | repeat | parses | interlock (sheet / tube) | free loops "
-        "| clearance (sheet / tube) | first knit |"
+        "| pattern | repeat | parses | interlock (sheet / tube) | clearance (sheet / tube) "
+        "| first knit |"
     )
-    print("|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|")
     for path in FILES:
         try:
             pattern = knitwear.Pattern.from_text(path.read_text(encoding="utf-8"))
         except knitwear.KnitError as e:
-            print(f"| {path.stem} | | no: {e} | | | | |")
+            print(f"| {path.stem} | | no: {e} | | | |")
             continue
-        cells, free, clear, first = [], [], [], 0.0
+        cells, clear, first = [], [], 0.0
         for i, surface in enumerate((sheet(), tube(pattern.width))):
             t0 = time.perf_counter()
             stats = knitwear.knit(surface, pattern, measure_clearance=True).stats
@@ -39,12 +39,10 @@ def main() -> None:
                 first = time.perf_counter() - t0
             decided, agree = stats["interlock"]
             cells.append(f"{100.0 * agree / decided:.0f}%")
-            free.append(str(stats["free_loops"][0]))
             clear.append(f"{stats['clearance_min']:.3f}")
         print(
             f"| {path.stem} | {pattern.width} x {pattern.height} | yes | {' / '.join(cells)} "
-            f"| {' / '.join(free) if len(set(free)) > 1 else free[0]} | {' / '.join(clear)} "
-            f"| {first:.1f} s |",
+            f"| {' / '.join(clear)} | {first:.1f} s |",
             flush=True,
         )
 

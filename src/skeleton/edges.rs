@@ -384,10 +384,7 @@ fn bind_off_stitch(
     let (offsets, l, leg) = bind_off_legs(lattice, pattern, offsets, course, wale);
     let s = offsets.loop_shape;
     let t = tile_at(lattice, course, wale as isize);
-    // The loop stands in the row above the last course, where that course's heads reach
-    // (`key_points`): its heights are in that row's height, not the last course's own,
-    // which rows of uneven height (a cable's) stretch column by column.
-    let (across, up) = (t.n1 - t.n0, t.n4 - t.n0);
+    let (across, up) = (t.n1 - t.n0, t.n0 - t.n3);
     let at =
         |(across_at, up_at): (f32, f32)| t.n0 + across_at * across + (s.head_reach + up_at) * up;
     let (head, head_lambda, right_top, right_lambda) = if last {
@@ -409,7 +406,7 @@ fn bind_off_stitch(
         // column, so the next tile's top need not continue this one's.
         let n = tile_at(lattice, course, wale as isize + 1);
         let (x, y) = BIND_OFF_HEAD;
-        let head_at = n.n0 + (x - 1.0) * (n.n1 - n.n0) + (s.head_reach + y) * (n.n4 - n.n0);
+        let head_at = n.n0 + (x - 1.0) * (n.n1 - n.n0) + (s.head_reach + y) * (n.n0 - n.n3);
         // The yarn comes back from the head across the next loop's leg a second time, on
         // the same side: the right leg top stays no further towards that leg than the head
         // and half a diameter.
