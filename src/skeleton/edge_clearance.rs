@@ -102,26 +102,34 @@ pub fn keep_clear(
         }
         ((j, samples[j], t[j]), (next, b, tb))
     };
+    // The fabric samples near each segment, found once for both passes below (finding
+    // them was most of an edge's time, and a seventh of an animated knit's per frame).
+    let near: Vec<_> = (0..segments)
+        .map(|j| {
+            let ((_, a, _), (_, b, _)) = ends(j);
+            fabric.pairs(a, b, &fabric.metrics[stitch_of(j)], clearance)
+        })
+        .collect();
     // Where the edge crosses the fabric, per fabric stitch: every point of the edge near a
     // crossing keeps to its side of the yarn there.
     let mut crossings = vec![Vec::new(); fabric.lines.len()];
-    for j in 0..segments {
+    for (j, pairs) in near.iter().enumerate() {
         let (a, b) = ends(j);
         fabric.crossings(
             a,
             b,
-            &fabric.metrics[stitch_of(j)],
-            clearance,
+            pairs,
             |t, f| edge_in_front(lattice, pattern, piece, t, f.course, f.wale, f.t),
             &mut crossings,
         );
     }
     let mut constraints = Vec::new();
-    for j in 0..segments {
+    for (j, pairs) in near.iter().enumerate() {
         let (a, b) = ends(j);
         fabric.constraints(
             a,
             b,
+            pairs,
             &fabric.metrics[stitch_of(j)],
             clearance,
             &crossings,
@@ -396,6 +404,11 @@ impl Metric {
     }
 }
 
+/// A fabric sample near a point of an edge segment ([`FabricNear::pairs`]): the point's
+/// index along the segment, the sample, the edge's lambda less the sample's, and their
+/// distance across in (u, v), scene units.
+type Pair<'a> = (usize, &'a FabricSample, f32, f32);
+
 /// The fabric's centreline samples near an edge piece, by the column they lie in.
 struct FabricNear {
     /// Samples of the courses beside the edge that lie in column `first + i` (their u over
@@ -546,13 +559,7 @@ impl FabricNear {
     /// The fabric samples near the segment from `a` to `b` of the edge, measured at
     /// [`SUBDIVISIONS`] points along it: (point, fabric sample, lambda gap, distance across
     /// in (u, v)).
-    fn pairs(
-        &self,
-        a: Vec3,
-        b: Vec3,
-        metric: &Metric,
-        clearance: f32,
-    ) -> Vec<(usize, &FabricSample, f32, f32)> {
+    fn pairs(&self, a: Vec3, b: Vec3, metric: &Metric, clearance: f32) -> Vec<Pair<'_>> {
         let mut pairs = Vec::new();
         for k in 0..SUBDIVISIONS {
             let q = a.lerp(b, k as f32 / SUBDIVISIONS as f32);
@@ -575,13 +582,12 @@ impl FabricNear {
         &self,
         (_, a, ta): (usize, Vec3, f32),
         (_, b, tb): (usize, Vec3, f32),
-        metric: &Metric,
-        clearance: f32,
+        pairs: &[Pair],
         front: impl Fn(f32, &FabricSample) -> Option<bool>,
         out: &mut [Vec<(Vec2, bool)>],
     ) {
         let mut tried = std::collections::BTreeSet::new();
-        for (_, f, _, _) in self.pairs(a, b, metric, clearance) {
+        for &(_, f, _, _) in pairs {
             let line = &self.lines[f.line];
             // Both of the sample's segments: the yarn may cross the edge on either side of
             // the one sample near it (a crossing between two samples farther than the
@@ -608,16 +614,17 @@ impl FabricNear {
     /// strictest). Near a crossing of a fabric yarn (`crossings`, from [`Self::crossings`]:
     /// the edge point within the clearance of it, the fabric sample within half of it), the
     /// edge keeps to the crossing's side of that yarn; elsewhere, to the side it is on.
+    #[allow(clippy::too_many_arguments)]
     fn constraints(
         &self,
         (ia, a, _): (usize, Vec3, f32),
         (ib, b, _): (usize, Vec3, f32),
+        pairs: &[Pair],
         metric: &Metric,
         clearance: f32,
         crossings: &[Vec<(Vec2, bool)>],
         out: &mut Vec<Constraint>,
     ) {
-        let pairs = self.pairs(a, b, metric, clearance);
         if pairs.is_empty() {
             return;
         }
