@@ -405,9 +405,123 @@ struct SegmentIndex {
     /// Highest cell coordinate holding anything, per axis (lowest is 0): searches are
     /// clipped to it, so a thin scene (one yarn, a sheet) does not probe empty space.
     top: [i64; 3],
-    slots: Vec<u64>,
-    ranges: Vec<[u32; 2]>,
+    /// Cell -> its range of `entries`.
+    cells: CellTable,
+    /// Segment ids, cell by cell, ascending within a cell.
     entries: Vec<u32>,
+}
+
+/// Where each cell's segments lie in [`SegmentIndex::entries`]. A scene of few cells for its
+/// segments (a tuning patch, a swatch) gets a dense grid, indexed directly; a sparse one
+/// (a large or thin scene of small cells) a hash table of the cells that hold anything. Both
+/// list the same segments per cell (the hash's wrapped keys only add far-away candidates,
+/// which the exact distances drop), so every query answers the same.
+enum CellTable {
+    /// Cells `[0, top]` per axis in x-major order: cell `c`'s entries are
+    /// `starts[c]..starts[c + 1]`.
+    Dense { dims: [usize; 3], starts: Vec<u32> },
+    /// Open addressing over cell keys ([`key`]): `slots[h]` a key (or [`EMPTY`]),
+    /// `ranges[h]` its entries.
+    Hashed {
+        slots: Vec<u64>,
+        ranges: Vec<[u32; 2]>,
+    },
+}
+
+impl CellTable {
+    /// The table of `pairs` (cell in `[0, top]`, segment), listed in segment order, and the
+    /// segments cell by cell (each once per cell, ascending).
+    fn new(top: [i64; 3], pairs: Vec<([i64; 3], u32)>) -> (Self, Vec<u32>) {
+        let dims = top.map(|t| t.max(0) as usize + 1);
+        let count = dims[0].saturating_mul(dims[1]).saturating_mul(dims[2]);
+        // Dense while its cells cost no more than a few words per listed segment.
+        if count <= (4 * pairs.len()).max(1 << 12) {
+            // A piece's cell is clamped into the grid: a lerp may round an ulp past the
+            // scene's box, and listing a segment in one more cell only adds a candidate.
+            let index = |c: [i64; 3]| {
+                let at = |ax: usize| c[ax].clamp(0, top[ax].max(0)) as usize;
+                (at(0) * dims[1] + at(1)) * dims[2] + at(2)
+            };
+            // A counting sort, stable: segments stay ascending within a cell, and the pieces
+            // of one segment that share a cell are adjacent there.
+            let mut starts = vec![0u32; count + 1];
+            for &(c, _) in &pairs {
+                starts[index(c) + 1] += 1;
+            }
+            for k in 0..count {
+                starts[k + 1] += starts[k];
+            }
+            let mut fill = starts.clone();
+            let mut placed = vec![0u32; pairs.len()];
+            for &(c, s) in &pairs {
+                let at = &mut fill[index(c)];
+                placed[*at as usize] = s;
+                *at += 1;
+            }
+            // Drop a segment listed twice in one cell (two of its pieces there).
+            let mut entries = Vec::with_capacity(placed.len());
+            let mut from = 0usize;
+            for k in 0..count {
+                let end = starts[k + 1] as usize;
+                starts[k] = entries.len() as u32;
+                for (n, &s) in placed[from..end].iter().enumerate() {
+                    if n == 0 || placed[from + n - 1] != s {
+                        entries.push(s);
+                    }
+                }
+                from = end;
+            }
+            starts[count] = entries.len() as u32;
+            return (CellTable::Dense { dims, starts }, entries);
+        }
+        let mut pairs: Vec<(u64, u32)> = pairs.into_iter().map(|(c, s)| (key(c), s)).collect();
+        pairs.par_sort_unstable();
+        pairs.dedup();
+        let distinct = pairs.windows(2).filter(|w| w[0].0 != w[1].0).count() + 1;
+        let capacity = (2 * distinct).next_power_of_two().max(16);
+        let mut slots = vec![EMPTY; capacity];
+        let mut ranges = vec![[0u32; 2]; capacity];
+        let entries: Vec<u32> = pairs.iter().map(|&(_, s)| s).collect();
+        let mut start = 0;
+        while start < pairs.len() {
+            let k = pairs[start].0;
+            let mut end = start + 1;
+            while end < pairs.len() && pairs[end].0 == k {
+                end += 1;
+            }
+            let mut h = hash(k) & (capacity - 1);
+            while slots[h] != EMPTY {
+                h = (h + 1) & (capacity - 1);
+            }
+            slots[h] = k;
+            ranges[h] = [start as u32, end as u32];
+            start = end;
+        }
+        (CellTable::Hashed { slots, ranges }, entries)
+    }
+
+    /// The range of entries of cell `c` (inside `[0, top]`).
+    #[inline]
+    fn range(&self, c: [i64; 3]) -> [u32; 2] {
+        match self {
+            CellTable::Dense { dims, starts } => {
+                let k = (c[0] as usize * dims[1] + c[1] as usize) * dims[2] + c[2] as usize;
+                [starts[k], starts[k + 1]]
+            }
+            CellTable::Hashed { slots, ranges } => {
+                let k = key(c);
+                let mask = slots.len() - 1;
+                let mut h = hash(k) & mask;
+                loop {
+                    match slots[h] {
+                        EMPTY => return [0, 0],
+                        s if s == k => return ranges[h],
+                        _ => h = (h + 1) & mask,
+                    }
+                }
+            }
+        }
+    }
 }
 
 impl SegmentIndex {
@@ -474,9 +588,9 @@ impl SegmentIndex {
         };
         let hi_cell = cell_of(hi);
 
-        // (key, segment) pairs: each segment split into pieces no longer than a cell, each
-        // piece's box overlapping at most 2 x 2 x 2 cells.
-        let mut pairs: Vec<(u64, u32)> = ends
+        // (cell, segment) pairs: each segment split into pieces no longer than a cell, each
+        // piece's box overlapping at most 2 x 2 x 2 cells; in segment order.
+        let pairs: Vec<([i64; 3], u32)> = ends
             .par_iter()
             .enumerate()
             .flat_map_iter(|(i, &[a, b])| {
@@ -491,36 +605,13 @@ impl SegmentIndex {
                     );
                     let (c0, c1) = (cell_of(u.min(v)), cell_of(u.max(v)));
                     (c0[0]..=c1[0]).flat_map(move |x| {
-                        (c0[1]..=c1[1]).flat_map(move |y| {
-                            (c0[2]..=c1[2]).map(move |z| (key([x, y, z]), i as u32))
-                        })
+                        (c0[1]..=c1[1])
+                            .flat_map(move |y| (c0[2]..=c1[2]).map(move |z| ([x, y, z], i as u32)))
                     })
                 })
             })
             .collect();
-        pairs.par_sort_unstable();
-        pairs.dedup();
-
-        let distinct = pairs.windows(2).filter(|w| w[0].0 != w[1].0).count() + 1;
-        let capacity = (2 * distinct).next_power_of_two().max(16);
-        let mut slots = vec![EMPTY; capacity];
-        let mut ranges = vec![[0u32; 2]; capacity];
-        let entries: Vec<u32> = pairs.iter().map(|&(_, s)| s).collect();
-        let mut start = 0;
-        while start < pairs.len() {
-            let k = pairs[start].0;
-            let mut end = start + 1;
-            while end < pairs.len() && pairs[end].0 == k {
-                end += 1;
-            }
-            let mut h = hash(k) & (capacity - 1);
-            while slots[h] != EMPTY {
-                h = (h + 1) & (capacity - 1);
-            }
-            slots[h] = k;
-            ranges[h] = [start as u32, end as u32];
-            start = end;
-        }
+        let (cells, entries) = CellTable::new(hi_cell, pairs);
 
         SegmentIndex {
             ends,
@@ -533,8 +624,7 @@ impl SegmentIndex {
             cell,
             inv_cell,
             top: hi_cell,
-            slots,
-            ranges,
+            cells,
             entries,
         }
     }
@@ -547,19 +637,8 @@ impl SegmentIndex {
 
     #[inline]
     fn lookup(&self, c: [i64; 3]) -> &[u32] {
-        let k = key(c);
-        let mask = self.slots.len() - 1;
-        let mut h = hash(k) & mask;
-        loop {
-            match self.slots[h] {
-                EMPTY => return &[],
-                s if s == k => {
-                    let [a, b] = self.ranges[h];
-                    return &self.entries[a as usize..b as usize];
-                }
-                _ => h = (h + 1) & mask,
-            }
-        }
+        let [a, b] = self.cells.range(c);
+        &self.entries[a as usize..b as usize]
     }
 
     /// How segments `i` and `j` relate along the yarns (see [`clearance`]).

@@ -558,6 +558,33 @@ fn agrees_with_brute_force() {
     }
 }
 
+/// A sparse scene (one yarn ten thousand diameters from the rest) is indexed by a hash of
+/// the cells that hold anything rather than a dense grid: it answers as brute force does too.
+#[test]
+fn a_sparse_scene_agrees_with_brute_force() {
+    for (seed, closed) in [(21, false), (22, true)] {
+        let mut walks = random_walks(8, 60, 0.3, seed);
+        let far = Vec3::new(1.0e4, -2.0e4, 1.5e4);
+        let last = walks.len() - 1;
+        for p in &mut walks[last] {
+            *p += far;
+        }
+        let yarns: Vec<YarnPolyline> = walks
+            .iter()
+            .map(|p| YarnPolyline { points: p, closed })
+            .collect();
+        let fast = segment_clearances(&yarns, 1.0, 2.0, 4.0).unwrap();
+        let slow = brute_force(&yarns, 1.0, 2.0, 4.0);
+        assert_eq!(fast, slow, "seed {seed}");
+        let capped = slow.iter().filter(|&&d| d == 4.0).count();
+        assert!(
+            capped > 0 && capped < slow.len() / 2,
+            "seed {seed}: {capped} of {} capped",
+            slow.len()
+        );
+    }
+}
+
 /// `close_pairs` lists exactly the pairs `clearance` compares: each segment's nearest listed
 /// partner is its clearance wherever that is under the radius, and it has none otherwise.
 #[test]

@@ -687,6 +687,12 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
             }
         });
         let mut best = score(&x);
+        // Scores already measured on this search's path: a point is often tried again (the
+        // step back from where the last sweep moved to is where it came from), and a score
+        // is a pure function of the point, so it is looked up, not measured again (about an
+        // eighth of the measurements of feather and fan's first knit).
+        let mut scored: HashMap<[u32; VARIABLES], f32> = HashMap::new();
+        scored.insert(x.map(f32::to_bits), best);
         let mut step = 0.25f32;
         while step >= 1.0 / 32.0 && !crate::cancel::requested() {
             let mut improved = false;
@@ -698,7 +704,9 @@ fn tune_at(pattern: &StitchPattern, width: f32, height: f32, tension: f32, per_l
                     if y[i] == x[i] {
                         continue;
                     }
-                    let s = score(&y);
+                    let s = *scored
+                        .entry(y.map(f32::to_bits))
+                        .or_insert_with(|| score(&y));
                     if s > best + 1e-6 {
                         x = y;
                         best = s;
