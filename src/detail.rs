@@ -109,7 +109,7 @@ pub struct DetailParams {
     pub mid_px: f32,
     /// Stitches smaller than this many pixels are left to the knitwear texture. Default: 1.
     pub texture_px: f32,
-    /// Quality of [`Level::Mid`]. `None`: half the samples (at least 6) and two thirds of the
+    /// Quality of [`Level::Mid`]. `None`: half the samples (at least 6) and five sixths of the
     /// ring segments (at least 3), fluff kept.
     pub mid: Option<LevelQuality>,
     /// Quality of [`Level::Far`]. `None`: 6 samples, 3 segments, no fluff.
@@ -184,11 +184,12 @@ pub struct LevelSettings {
 /// The cover a coarser sampling of the centreline loses, as a fraction, at `1/n^2 - 1/N^2`
 /// for `n` samples per loop against full detail's `N`: `(x, loss)` points joined by straight
 /// lines, and continued past the last along the last segment. Measured with Workbench renders
-/// of the default swatch at about 5 px a stitch, after the ring's shape (see
-/// [`LevelSettings::cover_radius_scale`]): the default mid level (8 of 16 samples) loses 5.6%
-/// of its cover to cut corners, the far level (6) 30%, where its loops turn to hexagons and
-/// their heads pile over each other.
-pub const SAMPLING_COVER_LOSS: [(f32, f32); 3] = [(0.0, 0.0), (0.01172, 0.035), (0.02387, 0.334)];
+/// of the default swatch, after the ring's shape (see [`LevelSettings::cover_radius_scale`]):
+/// the default mid level (8 of 16 samples, 5 ring points) loses 6% of its cover to cut
+/// corners (fitted on the 15 cm swatch of `tests/python/blender/test_detail.py`, about 8 px
+/// a stitch, to cover within 1% of full detail), the far level (6) 30% (at about 5 px a
+/// stitch), where its loops turn to hexagons and their heads pile over each other.
+pub const SAMPLING_COVER_LOSS: [(f32, f32); 3] = [(0.0, 0.0), (0.01172, 0.06), (0.02387, 0.334)];
 
 /// How much wider full detail's fluff makes the yarn look, per unit of fluffiness, against a
 /// plain tube (the same measurements, at fluffiness 0, 0.5 and 1.5).
@@ -346,7 +347,7 @@ impl DetailParams {
             Level::Full => return full,
             Level::Mid => self.mid.unwrap_or(LevelQuality {
                 samples_per_loop: (full.samples_per_loop / 2).max(6),
-                ring_segments: (2 * full.ring_segments).div_ceil(3).max(3),
+                ring_segments: (5 * full.ring_segments).div_ceil(6).max(3),
                 fluff: true,
             }),
             _ => self.far.unwrap_or(LevelQuality {

@@ -326,7 +326,7 @@ pub const DETAIL_MID_PX: Setting = Setting {
     part_of: Some("detail_px=(full, mid, texture)"),
     unit: "pixels",
     doc: "Stitches at least this many pixels across (and below Full Above) get half the \
-          samples and two thirds of the ring segments",
+          samples and five sixths of the ring segments",
     ..float("detail_mid_px", "Reduced Above", 5.0, (0.0, f64::INFINITY))
 };
 

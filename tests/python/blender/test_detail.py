@@ -219,15 +219,19 @@ def test_every_built_level_covers_as_much_as_full_detail(
         assert np.all(np.abs(change) < 0.03), level
 
 
-def test_a_far_knit_lit_keeps_full_details_colour(api: ModuleType, tmp_path: Path) -> None:
-    """Issue 16 item 5, lit: the far level's three-point ring shades like full detail's round
-    yarn. With a corner of every ring out of the fabric, two faces whose outer halves turn
-    away from the camera showed over the fabric, and far read 8.3% darker in red (3.3% in
+def test_mid_and_far_knits_lit_keep_full_details_colour(
+    api: ModuleType, tmp_path: Path
+) -> None:
+    """Issue 16 item 5, lit: the coarser rings shade like full detail's round yarn. The far
+    level's three-point ring, with a corner of every ring out of the fabric, showed the camera
+    two faces whose outer halves turn away from it, and far read 8.3% darker in red (3.3% in
     green and blue) than full detail in EEVEE; every other ring turned half a segment
-    (`ring_phase` in src/geometry/bundle.rs) spreads the normals as a round yarn's."""
+    (`ring_phase` in src/geometry/bundle.rs) spreads the normals as a round yarn's. Mid's
+    four-point ring read -2.7% in red and +4.2% in green and blue; five points read within
+    1% (the issue asks for 2%)."""
     _, full = _cover_and_colour(api, "full", tmp_path / "full.png", lit=True)
-    for level in ("mid", "far"):
+    for level, tolerance in (("mid", 0.02), ("far", 0.035)):
         _, colour = _cover_and_colour(api, level, tmp_path / f"{level}.png", lit=True)
         change = colour / full - 1.0
         print(f"\n{level}, lit in EEVEE: mean colour {np.round(change * 100, 1)}%", end="")
-    assert np.all(np.abs(change) < 0.035), "far"
+        assert np.all(np.abs(change) < tolerance), level
