@@ -636,7 +636,11 @@ fn counts_notes_words_and_numbering_as_patterns_write_them() {
             "{note}"
         );
     }
-    // Counts as words, wherever a count is written.
+    // Counts as words, wherever a count is written: after a stitch's name too.
+    assert_eq!(
+        chart("Row 1: knit two, purl three, k one tbl, slip one wyif.\nRow 2: Purl."),
+        chart("Row 1: k2, p3, k1 tbl, sl1 wyif.\nRow 2: Purl.")
+    );
     assert_eq!(
         chart("Rnd 1: [k1, p1] two times, k2tog three times, yo three times, p2."),
         chart("Rnd 1: [k1, p1] 2 times, k2tog 3 times, yo 3 times, p2.")

@@ -464,11 +464,18 @@ impl Reads {
     }
 }
 
-/// A count (1 when no digits; 0 or a count too large to read is no stitch) and the words
-/// after it, from what follows a stitch's name.
+/// A count, in digits or words (1 when none is written; 0 or a count too large to read is
+/// no stitch), and the words after it, from what follows a stitch's name.
 fn count_and_rest(rest: &str) -> Option<(usize, &str)> {
     let rest = rest.trim_start();
     let digits = rest.chars().take_while(char::is_ascii_digit).count();
+    if digits == 0 {
+        // A count in words, as some printed patterns spell it (`knit two`, `slip one`).
+        let word = rest.split(' ').next().unwrap_or("");
+        if let Some(n) = super::knitspeak::numbers::count(word).filter(|&n| n >= 1) {
+            return Some((n, rest[word.len()..].trim()));
+        }
+    }
     let count = if digits == 0 {
         1
     } else {

@@ -28,7 +28,7 @@
 //!   a run works what that one left: `k to last 2 sts, p to end` is `k to last 2 sts, p2`),
 //!   and stitch counts `(18 sts)`: on a row of a
 //!   fixed width the count it leaves, on an all-over row a width the piece can have. Counts
-//!   may be words (`three times`, `to last two sts`, `(six sts)`). A width note in brackets
+//!   may be words (`three times`, `to last two sts`, `(six sts)`, `knit two`). A width note in brackets
 //!   is a note, not stitches.
 //! - Edges: the stitches outside an all-over row's repeat are not knitted (see below), so
 //!   edge shaping there (`ssk, k to last st, m1r, k1`) is an error that says so, never
@@ -85,7 +85,7 @@ mod body;
 mod headers;
 mod layout;
 mod lexer;
-mod numbers;
+pub(super) mod numbers;
 mod width_note;
 
 pub(crate) use layout::{lcm, normalised, wrap};

@@ -29,7 +29,7 @@ const WORDS: [&str; 21] = [
 /// `s` (lower case, trimmed) read as a count: digits or a number word. `None` for anything
 /// else, zero included where it is written in digits too (`0` and `zero` both read as 0; the
 /// caller decides whether 0 means anything).
-pub(super) fn count(s: &str) -> Option<usize> {
+pub(in crate::pattern) fn count(s: &str) -> Option<usize> {
     let s = s.trim();
     if !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) {
         return s.parse().ok();
