@@ -154,7 +154,12 @@ def render(engine: str, path: Path) -> None:
     import bpy
 
     scene = bpy.context.scene
-    scene.render.engine = engine
+    try:
+        scene.render.engine = engine
+    except TypeError:
+        if engine != "BLENDER_EEVEE":
+            raise
+        scene.render.engine = "BLENDER_EEVEE_NEXT"  # the name Blender 4.2 to 4.5 give EEVEE
     if engine == "BLENDER_WORKBENCH":
         shading = scene.display.shading
         shading.light = "STUDIO"  # lit: the pressed pile faces the light differently
