@@ -241,6 +241,24 @@ pub const MAX_VIEWS: usize = 2048;
 pub const MAX_HIDDEN_SAMPLES: u64 = 65536;
 
 impl DetailParams {
+    /// Checks the user's detail settings (thresholds, frame margin, visibility samples, Cull
+    /// From) against their ranges, camera or not: a setting out of range is refused even
+    /// where no camera would use it, as every other setting is. Errors name the setting.
+    pub fn validate_settings(&self) -> Result<()> {
+        let t = (self.full_px, self.mid_px, self.texture_px);
+        let finite = t.0.is_finite() && t.1.is_finite() && t.2.is_finite();
+        if !(finite && t.0 >= t.1 && t.1 >= t.2 && t.2 >= 0.0) {
+            return Err(KnitError::Parameter(format!(
+                "detail thresholds must satisfy full >= mid >= texture >= 0 pixels, not \
+                 {} / {} / {}",
+                t.0, t.1, t.2
+            )));
+        }
+        crate::settings::FRUSTUM_MARGIN.check(self.frustum_margin)?;
+        crate::settings::HIDDEN_SUPERSAMPLING.check(self.hidden_supersampling)?;
+        crate::settings::CULL_HIDDEN_MIN_TRIANGLES.check(self.cull_hidden_min_triangles as f64)
+    }
+
     /// Checks the settings; errors name the setting.
     pub fn validate(&self) -> Result<()> {
         if self.views.is_empty() && self.pinned.is_none() {
@@ -296,18 +314,7 @@ impl DetailParams {
                 "camera resolution must be 1..=65536 pixels each way, not {w} x {h}"
             )));
         }
-        let t = (self.full_px, self.mid_px, self.texture_px);
-        let finite = t.0.is_finite() && t.1.is_finite() && t.2.is_finite();
-        if !(finite && t.0 >= t.1 && t.1 >= t.2 && t.2 >= 0.0) {
-            return Err(KnitError::Parameter(format!(
-                "detail thresholds must satisfy full >= mid >= texture >= 0 pixels, not \
-                 {} / {} / {}",
-                t.0, t.1, t.2
-            )));
-        }
-        crate::settings::FRUSTUM_MARGIN.check(self.frustum_margin)?;
-        crate::settings::HIDDEN_SUPERSAMPLING.check(self.hidden_supersampling)?;
-        crate::settings::CULL_HIDDEN_MIN_TRIANGLES.check(self.cull_hidden_min_triangles as f64)?;
+        self.validate_settings()?;
         let samples = w.max(h) as u64 * u64::from(self.hidden_supersampling);
         if self.cull_hidden && !self.views.is_empty() && samples > MAX_HIDDEN_SAMPLES {
             return Err(KnitError::Parameter(format!(

@@ -189,19 +189,19 @@ pub(super) fn detail_from(
                  seen_triangles of an earlier knit)",
             ))
         }
-        (None, None) => return Ok(None),
         (Some(_), Some(_)) => {
             return Err(ParameterError::new_err(
                 "give a camera or pinned stitch_levels, not both",
             ))
         }
         (Some(c), None) => (c.get().views.clone(), c.get().resolution),
-        (None, Some(_)) => (Vec::new(), (1, 1)),
+        (None, _) => (Vec::new(), (1, 1)),
     };
     let defaults = DetailParams::default();
     let (full_px, mid_px, texture_px) =
         detail_px.unwrap_or((defaults.full_px, defaults.mid_px, defaults.texture_px));
-    Ok(Some(DetailParams {
+    let no_view = views.is_empty() && pinned.is_none();
+    let params = DetailParams {
         views,
         resolution,
         pinned,
@@ -226,7 +226,14 @@ pub(super) fn detail_from(
             u64::MAX,
         )?,
         pinned_seen: seen_triangles,
-    }))
+    };
+    if no_view {
+        // Without a camera every stitch is full detail and these settings are unused, but a
+        // value out of range is still the caller's mistake to hear about.
+        params.validate_settings().map_err(super::errors::to_py)?;
+        return Ok(None);
+    }
+    Ok(Some(params))
 }
 
 pub(super) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
