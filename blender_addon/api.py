@@ -339,6 +339,37 @@ def _core_steps(
 ) -> Generator[CoreJob, Any, tuple[sampling.Sampled, Any, Bound, tuple[float, float]]]:
     """Everything that can fail, before any datablock is created: sampling here, then the
     core's knit as the one `CoreJob`. Returns the seconds of both: (sampling, core)."""
+    try:
+        return (yield from _core_steps_sized(source, context, settings, progress))
+    except knitwear.BudgetError as err:
+        raise _at_real_size(err, source, context, settings) from err
+
+
+def _at_real_size(
+    err: knitwear.BudgetError,
+    source: bpy.types.Object,
+    context: bpy.types.Context,
+    settings: Mapping[str, Any],
+) -> knitwear.BudgetError:
+    """A refusal for size that says why a knit is so large: the first knit of Blender's 2 m
+    default cube is 2.7 million stitches, because knitting happens at a real gauge."""
+    if settings["size_mode"] != "GAUGE":
+        return err
+    metres = [d * context.scene.unit_settings.scale_length for d in source.dimensions]
+    size = " x ".join(f"{m:.3g}" for m in metres)
+    return knitwear.BudgetError(
+        f"{err}. Knitwear knits at a real gauge ({settings['gauge_stitches']:g} stitches per "
+        f"10 cm) and '{source.name}' measures {size} m: scale it to the size of the real "
+        "garment piece, or set Size to Counts"
+    )
+
+
+def _core_steps_sized(
+    source: bpy.types.Object,
+    context: bpy.types.Context,
+    settings: Mapping[str, Any],
+    progress: Progress | None,
+) -> Generator[CoreJob, Any, tuple[sampling.Sampled, Any, Bound, tuple[float, float]]]:
     t_sampling = time.perf_counter()
     inputs = core_inputs.core_inputs(source, context, settings, progress)
     sampled, pattern, kwargs, min_samples = (

@@ -61,6 +61,11 @@ def _summary(outcome: api.KnitOutcome) -> str:
             )
         )
         stored = outcome.object.knitwear
+        if lv["full"] == 0 and outcome.stitches:
+            notes.append(
+                "no stitch is close enough to the camera for full detail: move the camera "
+                "closer, or set Detail to Full"
+            )
         if outcome.hidden_pass is False:
             notes.append(
                 "hidden yarn kept: fewer full-detail triangles than Cull From "

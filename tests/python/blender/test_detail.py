@@ -235,3 +235,20 @@ def test_mid_and_far_knits_lit_keep_full_details_colour(
         change = colour / full - 1.0
         print(f"\n{level}, lit in EEVEE: mean colour {np.round(change * 100, 1)}%", end="")
         assert np.all(np.abs(change) < tolerance), level
+
+
+def test_a_knit_with_no_full_detail_stitch_says_how_to_get_one(api: ModuleType) -> None:
+    """A first knit seen from Blender's default camera, metres away, has no stitch at full
+    detail: the report says so and how to change it, where a knit with full stitches does
+    not."""
+    operators = importlib.import_module(api.__name__.rsplit(".", 1)[0] + ".operators")
+    source = strip()
+    receding_camera()
+    near = api.knit(source, **STRIP, **COARSE)
+    assert near.levels["full"] > 0
+    assert "close enough" not in operators._summary(near)
+    far = api.knit(source, **STRIP, **(COARSE | {"detail_full_px": 1e6}))
+    assert far.levels["full"] == 0 and far.stitches > 0
+    report = operators._summary(far)
+    assert "no stitch is close enough to the camera" in report, report
+    assert "Detail to Full" in report, report

@@ -40,6 +40,13 @@ def nurbs_patch_500_m() -> bpy.types.Object:
     return obj
 
 
+def default_cube() -> bpy.types.Object:
+    """Blender's 2 m default cube: a new user's first try, 2.7 million stitches at a real
+    gauge. The refusal must say why: the gauge is real and the cube is 2 m."""
+    bpy.ops.mesh.primitive_cube_add(size=2.0)
+    return bpy.context.active_object
+
+
 # (source, settings, core error class name, words the message must contain)
 CASES: dict[str, tuple[Callable[[], bpy.types.Object], dict[str, Any], str, str]] = {
     "no uv map": (mesh_without_uvs, SMALL, "SurfaceError", "UV map"),
@@ -56,6 +63,12 @@ CASES: dict[str, tuple[Callable[[], bpy.types.Object], dict[str, Any], str, str]
         SMALL | {"courses": 10**6, "wales": 10**6},
         "BudgetError",
         "",
+    ),
+    "the default cube at the default gauge": (
+        default_cube,
+        {"size_mode": "GAUGE"},
+        "BudgetError",
+        "knits at a real gauge (20 stitches per 10 cm) and 'Cube' measures 2 x 2 x 2 m",
     ),
     "a 500 m surface at a knitting gauge": (
         nurbs_patch_500_m,
