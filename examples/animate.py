@@ -8,6 +8,7 @@ extension's frame handler, exactly as it does for F12 or `blender -b file.blend 
 
     .venv/bin/python examples/animate.py --out out/sleeve                 # frames 1-24
     .venv/bin/python examples/animate.py --pattern seed --frames 1 48 --out out/sleeve
+    .venv/bin/python examples/animate.py --engine eevee --still 12 --lens 60 --size 1200 600
 """
 
 import argparse
@@ -30,6 +31,11 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--frames", type=int, nargs=2, default=(1, 24), metavar=("FIRST", "LAST"))
     parser.add_argument("--size", type=int, nargs=2, default=(640, 480), metavar=("W", "H"))
     parser.add_argument("--gauge", type=float, default=20.0, help="stitches per 10 cm")
+    parser.add_argument("--engine", choices=("workbench", "eevee", "cycles"), default="workbench",
+                        help="render engine (eevee and cycles light the wool material)")
+    parser.add_argument("--still", type=int, metavar="FRAME",
+                        help="render only this frame, to OUT/still.png")
+    parser.add_argument("--lens", type=float, default=35.0, help="camera focal length, mm")
     return parser.parse_args()
 
 
@@ -94,12 +100,12 @@ def rig(sleeve: "bpy.types.Object", first: int, last: int) -> None:  # noqa: F82
         bone.keyframe_insert("rotation_euler", frame=frame)
 
 
-def stage() -> None:
+def stage(lens: float) -> None:
     import bpy
 
     scene = bpy.context.scene
     camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
-    camera.data.lens = 35.0
+    camera.data.lens = lens
     camera.location = (1.1, -0.45, 0.4)
     look_at(camera, (0.0, -0.12, 0.3))
     scene.collection.objects.link(camera)
@@ -107,6 +113,34 @@ def stage() -> None:
     world = bpy.data.worlds.new("World")
     world.color = (0.05, 0.05, 0.06)
     scene.world = world
+
+
+def lit(engine: str, width: int, height: int, path: Path) -> None:
+    """EEVEE or Cycles, lit by a sun and a grey sky, so the wool material shows."""
+    import bpy
+
+    scene = bpy.context.scene
+    if engine == "cycles":
+        scene.render.engine = "CYCLES"
+        scene.cycles.samples = 64
+    else:
+        try:
+            scene.render.engine = "BLENDER_EEVEE"
+        except TypeError:
+            scene.render.engine = "BLENDER_EEVEE_NEXT"  # Blender 4.2 to 4.5
+        scene.eevee.taa_render_samples = 16
+    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    sun.data.energy = 3.0
+    sun.rotation_euler = (math.radians(50), math.radians(10), math.radians(60))
+    scene.collection.objects.link(sun)
+    scene.world.color = (0.18, 0.19, 0.21)
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    scene.render.resolution_percentage = 100
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "PNG"
+    scene.render.use_stamp_date = False
+    scene.render.use_stamp_render_time = False
+    scene.render.filepath = str(path)
 
 
 def main() -> None:
@@ -121,7 +155,7 @@ def main() -> None:
     scene.frame_start, scene.frame_end = first, last
     sleeve = tube()
     rig(sleeve, first, last)
-    stage()
+    stage(args.lens)
     scene.frame_set(first)
 
     t0 = time.perf_counter()
@@ -143,12 +177,23 @@ def main() -> None:
     sleeve.hide_render = True
     sleeve.hide_set(True)
 
-    # FXAA: one anti-aliasing pass per frame keeps a long animation quick on a CPU renderer.
-    workbench(*args.size, args.out / "frame_", aa="FXAA")
+    path = args.out / ("still.png" if args.still is not None else "frame_")
+    if args.engine == "workbench":
+        # FXAA: one anti-aliasing pass per frame keeps a long animation quick on a CPU renderer.
+        workbench(*args.size, path, aa="8" if args.still is not None else "FXAA")
+    else:
+        lit(args.engine, *args.size, path)
     t0 = time.perf_counter()
-    bpy.ops.render.render(animation=True)
-    frames = last - first + 1
-    print(f"animate: rendered {frames} frames to {args.out} in {time.perf_counter() - t0:.1f} s")
+    if args.still is not None:
+        scene.frame_set(args.still)
+        bpy.ops.render.render(write_still=True)
+        print(f"animate: rendered frame {args.still} to {path} in "
+              f"{time.perf_counter() - t0:.1f} s")
+    else:
+        bpy.ops.render.render(animation=True)
+        frames = last - first + 1
+        print(f"animate: rendered {frames} frames to {args.out} in "
+              f"{time.perf_counter() - t0:.1f} s")
     blend = (args.out / "sleeve.blend").resolve()
     bpy.ops.wm.save_as_mainfile(filepath=str(blend))
     print(f"animate: saved {blend} (render any frame alone: blender -b {blend.name} -f N)")
