@@ -7,12 +7,25 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
+# `--zip-only`: just the release zip and wheel (dist/, build/wheels), skipping the other
+# Blender versions' venvs that only the tests need (and the Python 3.13 they need).
+ZIP_ONLY=0
+if [ "${1:-}" = "--zip-only" ]; then
+  ZIP_ONLY=1
+elif [ $# -gt 0 ]; then
+  echo "usage: scripts/bootstrap.sh [--zip-only]" >&2
+  exit 2
+fi
+
 PY=${PYTHON:-python3}
 # Four bpy builds (about 1 GB each unpacked) are installed below: pip's cache would keep a
 # second copy of every wheel, and a CI disk has run out of room here once.
 export PIP_NO_CACHE_DIR=1
 # Blender versions smoke-tested beside the suite's (see below and scripts/test.sh).
 SMOKE_BLENDERS="42:3.11 45:3.11 52:3.13"
+if [ "$ZIP_ONLY" = 1 ]; then
+  SMOKE_BLENDERS=""
+fi
 if [ ! -x .venv/bin/python ]; then
   echo "bootstrap: creating .venv"
   "$PY" -m venv .venv

@@ -1,7 +1,7 @@
-"""Prints the README's corpus table: each written pattern of tests/data/knitspeak and
-tests/data/corpus, whether it parses, its repeat, the interlock and minimum clearance on the
-sheet and the tube of `tests/python/core/test_corpus.py`, and its first knit's time (the
-sheet, which tunes the pattern; the tube then reuses the tuning).
+"""Prints the corpus table of docs/where-it-breaks.md: each written pattern of
+tests/data/knitspeak and tests/data/corpus, whether it parses, its repeat, the interlock
+and minimum clearance on the sheet and the tube of `tests/python/core/test_corpus.py`, and
+its first knit's time (the sheet, which tunes the pattern; the tube then reuses the tuning).
 
     PYTHONPATH=build/site .venv/bin/python scripts/corpus_table.py
 """

@@ -6,7 +6,7 @@
 //!   [`crate::detail::DetailParams::default`]) and its range checks ([`Setting::check`]);
 //! - the Python module's `knitwear.settings()`, from which the Blender add-on builds its
 //!   properties (label, tooltip, default, range);
-//! - the README's settings table (`scripts/settings_table.py` writes it).
+//! - the manual's settings reference, `docs/settings.md` (`scripts/settings_table.py` writes it).
 //!
 //! The pyo3 signatures and the `.pyi` stub must spell their defaults as literals; a test
 //! (`tests/python/core/test_settings.py`) fails when they disagree with this table, and
@@ -67,7 +67,7 @@ pub struct Setting {
     pub max: f64,
     /// Unit of the value ("" for a pure number).
     pub unit: &'static str,
-    /// One line of doc: the add-on's tooltip, the README's description.
+    /// One line of doc: the add-on's tooltip, the settings reference's description.
     pub doc: &'static str,
 }
 
@@ -415,7 +415,7 @@ pub const CULL_HIDDEN_MIN_TRIANGLES: Setting = Setting {
     )
 };
 
-/// Every knit setting, in the order the add-on and the README show them.
+/// Every knit setting, in the order the add-on and `docs/settings.md` show them.
 pub const KNIT_SETTINGS: &[Setting] = &[
     GAUGE_STITCHES,
     GAUGE_ROWS,

@@ -1,6 +1,6 @@
 //! How much of stitch-maps.com the reader reads (issue 17, item 1): every stitch that the
 //! 9,263 patterns counted in `tests/data/stitchmaps/stitch-freqs.csv` use, asked of the
-//! reader's vocabulary, and the figures the README states recomputed from it.
+//! reader's vocabulary, and the figures the manual (docs/stitches.md) states recomputed from it.
 //!
 //! The per-pattern stitch lists behind the counts are not published, so the share of
 //! patterns read whole is bounded from below: a pattern the reader cannot read uses at least
@@ -155,10 +155,10 @@ fn common_stitches_not_knitted_are_explained() {
     );
 }
 
-/// The README states what this computes: the common stitches the reader knows, and the
+/// The manual's stitch page states what this computes: the common stitches the reader knows, and the
 /// lower bound on the patterns it reads whole.
 #[test]
-fn the_readme_states_the_vocabulary_coverage() {
+fn the_manual_states_the_vocabulary_coverage() {
     let all = read_all();
     let common: Vec<_> = all.iter().filter(|(_, c, _)| *c >= COMMON).collect();
     let known = common.iter().filter(|(_, _, ins)| ins.is_some()).count();
@@ -183,11 +183,12 @@ fn the_readme_states_the_vocabulary_coverage() {
          least {bound:.1}% of those patterns whole",
         common.len()
     );
-    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md"))
-        .expect("README.md");
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/stitches.md"))
+            .expect("docs/stitches.md");
     let flat = readme.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(
         flat.contains(&sentence),
-        "README.md should say that the reader {sentence:?}"
+        "docs/stitches.md should say that the reader {sentence:?}"
     );
 }

@@ -1,4 +1,4 @@
-"""Plush: warp-knitted pile over a NURBS surface or a UV-mapped mesh (README "Plush").
+"""Plush: warp-knitted pile over a NURBS surface or a UV-mapped mesh (docs/plush.md).
 
 The core (`knitwear.plush`) does all the geometry: pile roots on the stitch grid, fractal-noise
 directions, press-map bending and, per pile, horizontal or vertical slices for the view. This

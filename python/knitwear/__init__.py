@@ -17,8 +17,11 @@ Every error a user can cause is a :class:`KnitError`. Ctrl-C stops a long call (
 `KeyboardInterrupt`), and :func:`cancel` stops every running call from another thread.
 """
 
+import inspect
+import textwrap
 from typing import Any
 
+from . import settings_text
 from ._core import (
     BudgetError,
     Camera,
@@ -54,14 +57,35 @@ from ._core import (
 def knit(surface: GridSurface | MeshSurface, pattern: Pattern, **settings: Any) -> KnitResult:
     """Knit ``pattern`` over ``surface``: ``Knit(surface, pattern, **settings).build(surface)``.
 
-    The keyword settings are `Knit`'s: every one `settings()` lists (declared once in the
-    core, with its default, range and unit; the README's table is made from it), and
-    ``gauge``, ``stitch_size``, ``colors``, ``color_image``, ``threads``, ``budget_bytes``,
-    ``measure_clearance``, and for camera-driven detail ``camera`` (a `Camera`),
-    ``detail_px``, ``mid_quality``, ``far_quality``, ``stitch_levels`` and
-    ``seen_triangles``. ``stats["seconds"]`` is the build's.
+    Returns a `KnitResult`: the mesh (``vertices``, ``triangles``, ``colors``, ``normals``...)
+    and the yarn (``centerline_points`` split by ``course_offsets``) as NumPy arrays in the
+    surface's object space, scene units (metres by default), and ``stats`` (docs/stats.md).
+    Raises `KnitError` (`SurfaceError`, `PatternError`, `ParameterError`, `BudgetError`,
+    `CancelledError`) for anything a caller can get wrong; nothing is kept then.
+
+    Besides the settings below, ``gauge=(stitches, rows)`` per 10 cm, ``stitch_size``
+    (width, height) to pin, ``colors`` (a `ColorPattern`) or ``color_image`` (float32
+    (H, W, 3|4) over (u,v)), ``threads``, ``budget_bytes`` (4 GiB), ``measure_clearance``
+    (clearance and interlock into ``stats``), and for camera-driven detail ``camera`` (a
+    `Camera`), ``detail_px=(full, mid, texture)`` pixels, ``mid_quality``, ``far_quality``,
+    ``stitch_levels`` and ``seen_triangles`` (docs/settings.md, docs/detail.md).
+
+    Settings, each declared once in the core (`settings()` lists them):
+
     """
     return Knit(surface, pattern, **settings).build(surface)
+
+
+def _document_knit() -> None:
+    """Give `knit` `Knit`'s whole keyword signature and each setting's meaning, default and
+    range, read from the core's table, so `help(knitwear.knit)` is the reference."""
+    params = list(inspect.signature(Knit).parameters.values())
+    knit.__signature__ = inspect.Signature(params, return_annotation=KnitResult)  # type: ignore[attr-defined]
+    table = settings_text.help_text(settings())
+    knit.__doc__ = (knit.__doc__ or "").rstrip(" ") + textwrap.indent(table, "    ") + "\n"
+
+
+_document_knit()
 
 
 __all__ = [

@@ -92,7 +92,8 @@ class MeshSurface:
         uvs: npt.NDArray[np.float32],
     ) -> Self: ...
     @property
-    def extent(self) -> tuple[float, float]: ...
+    def extent(self) -> tuple[float, float]:
+        """Mean length along u (a course) and along v (a wale), scene units."""
     @property
     def domain(self) -> tuple[tuple[float, float], tuple[float, float]]:
         """The UV map's bounding box ((u_min, v_min), (u_max, v_max)): what a knit and a
@@ -104,7 +105,9 @@ class Pattern:
     slips, bobbles), repeated over the surface."""
 
     @staticmethod
-    def preset(name: str) -> Pattern: ...
+    def preset(name: str) -> Pattern:
+        """A built-in pattern by name; an unknown name is a PatternError listing
+        `Pattern.presets()`."""
     @staticmethod
     def from_chart(text: str) -> Pattern:
         """A chart, top row first, as seen on the right side, with an optional legend
@@ -120,15 +123,20 @@ class Pattern:
     def from_file(path: str | bytes | os.PathLike[str] | os.PathLike[bytes]) -> Pattern:
         """A UTF-8 file of Knitspeak or a chart; an unreadable file is a PatternError."""
     @staticmethod
-    def looks_like_knitspeak(text: str) -> bool: ...
+    def looks_like_knitspeak(text: str) -> bool:
+        """Whether `text` reads as Knitspeak rather than a chart (what `from_text` decides by)."""
     @staticmethod
-    def presets() -> list[str]: ...
+    def presets() -> list[str]:
+        """The names of the built-in patterns."""
     @property
-    def name(self) -> str: ...
+    def name(self) -> str:
+        """The preset's name, or what the pattern was read from."""
     @property
-    def width(self) -> int: ...
+    def width(self) -> int:
+        """Stitches in one repeat of the pattern."""
     @property
-    def height(self) -> int: ...
+    def height(self) -> int:
+        """Rows in one repeat of the pattern."""
     def chart(self) -> str:
         """The chart, top row first; k/p only for knit and purl patterns, else with a legend.
         `Pattern.from_chart` reads it back to the same stitches."""
@@ -143,30 +151,46 @@ class ColorPattern:
     def __new__(
         cls, palette: Sequence[Sequence[float]], chart: str | None = None) -> Self: ...
     @staticmethod
-    def stripes(palette: Sequence[Sequence[float]], rows_each: int = 2) -> ColorPattern: ...
+    def stripes(palette: Sequence[Sequence[float]], rows_each: int = 2) -> ColorPattern:
+        """Stripes of the palette's colours in turn, `rows_each` rows each."""
     @staticmethod
     def preset(name: str, palette: Sequence[Sequence[float]]) -> ColorPattern:
         """A named colour chart ("fair_isle_band": 0 background, 1 pattern)."""
     @staticmethod
-    def presets() -> list[str]: ...
+    def presets() -> list[str]:
+        """The names of the built-in colour charts."""
 
 @final
 class KnitResult:
-    vertices: npt.NDArray[np.float32]  # (V, 3)
-    triangles: npt.NDArray[np.int32]  # (T, 3)
-    edges: npt.NDArray[np.int32]  # (E, 2), every edge of the triangles exactly once
-    corner_edges: npt.NDArray[np.int32]  # (3T,), edge from corner k to the next in its face
-    colors: npt.NDArray[np.float32]  # (V, 4) linear RGBA per vertex
-    centerline_points: npt.NDArray[np.float32]  # (P, 3)
-    course_offsets: npt.NDArray[np.int64]  # (Y+1,), yarn piece i = points[o[i]:o[i+1]]
-    yarn_course: npt.NDArray[np.int32]  # (Y,), the course (row) each yarn piece belongs to
-    yarn_closed: npt.NDArray[np.bool_]  # (Y,), whether each piece closes on itself
+    """A knit's mesh and yarn, as NumPy arrays in the surface's object space (scene units)."""
+
+    vertices: npt.NDArray[np.float32]
+    """(V, 3) vertex positions, scene units, in the surface's object space"""
+    triangles: npt.NDArray[np.int32]
+    """(T, 3) vertex indices of each triangle"""
+    edges: npt.NDArray[np.int32]
+    """(E, 2), every edge of the triangles exactly once"""
+    corner_edges: npt.NDArray[np.int32]
+    """(3T,), edge from corner k to the next in its face"""
+    colors: npt.NDArray[np.float32]
+    """(V, 4) linear RGBA per vertex"""
+    centerline_points: npt.NDArray[np.float32]
+    """(P, 3) samples of the yarn's centreline, scene units, piece after piece"""
+    course_offsets: npt.NDArray[np.int64]
+    """(Y+1,), yarn piece i = points[o[i]:o[i+1]]"""
+    yarn_course: npt.NDArray[np.int32]
+    """(Y,), the course (row) each yarn piece belongs to"""
+    yarn_closed: npt.NDArray[np.bool_]
+    """(Y,), whether each piece closes on itself"""
     yarn_radius: float
-    normals: npt.NDArray[np.float32]  # (V, 3) shading normals: the swept tube's
-    # (V, 3) unit fibre directions: along the yarn, slanted with the plies' twist, across
-    # `normals` (a material's anisotropic tangent)
+    """The yarn's radius, scene units"""
+    normals: npt.NDArray[np.float32]
+    """(V, 3) unit shading normals: the swept tube's"""
     tangents: npt.NDArray[np.float32]
+    """(V, 3) unit fibre directions: along the yarn, slanted with the plies' twist, across
+    `normals` (a material's anisotropic tangent)"""
     stats: dict[str, Any]
+    """Figures about the build: docs/stats.md lists every key"""
 
 @final
 class Knit:
@@ -234,9 +258,12 @@ class Knit:
         """(V, 3) float32 unit shading normals for `surface` in a new pose (the swept
         tube's, out from the yarn's centreline), bit-identical to `build(surface).normals`."""
     @property
-    def vertex_count(self) -> int: ...
+    def vertex_count(self) -> int:
+        """Vertices of every build and of `positions` (fixed when the knit is bound)."""
     @property
-    def yarn_radius(self) -> float: ...
+    def yarn_radius(self) -> float:
+        """The yarn radius bound at knit time, scene units (pin it with `yarn_radius=` to
+        rebuild)."""
     @property
     def counts(self) -> tuple[int, int]:
         """(courses, wales)."""
@@ -244,7 +271,8 @@ class Knit:
     def stitch_size(self) -> tuple[float, float]:
         """(width, height) of a stitch the loop shapes are tuned for, scene units."""
     @property
-    def topology_key(self) -> int: ...
+    def topology_key(self) -> int:
+        """A key of the mesh topology: equal keys mean identical triangles and edges."""
     @property
     def seen_triangles(self) -> bytes | None:
         """With ``cull_hidden``: one bit per triangle before culling (triangle i at bit i % 8
@@ -267,9 +295,11 @@ class Camera:
         cls, matrices: npt.ArrayLike, eyes: npt.ArrayLike, resolution: tuple[int, int]
     ) -> Self: ...
     @property
-    def views(self) -> int: ...
+    def views(self) -> int:
+        """How many views (an animation's frames) the camera holds."""
     @property
-    def resolution(self) -> tuple[int, int]: ...
+    def resolution(self) -> tuple[int, int]:
+        """(width, height) in pixels."""
 
 def knit_texture(
     surface: GridSurface | MeshSurface,
@@ -335,10 +365,14 @@ class PlushView:
     """The view-dependent buffers of a plush for one view (topology, UVs and colours are
     the `PlushResult`'s and never change with the view)."""
 
-    vertices: npt.NDArray[np.float32]  # (V, 3)
-    mask: npt.NDArray[np.float32]  # (V,) 0 round mask (horizontal slice), 1 rectangle
-    horizontal: npt.NDArray[np.uint8]  # (P,) 1 where the pile has horizontal slices
-    stats: dict[str, Any]  # horizontal, vertical, seconds
+    vertices: npt.NDArray[np.float32]
+    """(V, 3) vertex positions for this view, scene units"""
+    mask: npt.NDArray[np.float32]
+    """(V,) 0 round mask (horizontal slice), 1 rectangle"""
+    horizontal: npt.NDArray[np.uint8]
+    """(P,) 1 where the pile has horizontal slices"""
+    stats: dict[str, Any]
+    """`horizontal`, `vertical` (piles of each kind) and `seconds`"""
 
 @final
 class PlushField:
@@ -362,15 +396,20 @@ class PlushField:
     ) -> PlushResult:
         """Every buffer for a view, as `plush()` returns them."""
     @property
-    def piles(self) -> int: ...
+    def piles(self) -> int:
+        """Piles built."""
     @property
-    def slices(self) -> int: ...
+    def slices(self) -> int:
+        """Quads per pile."""
     @property
-    def pile_length(self) -> float: ...
+    def pile_length(self) -> float:
+        """Pile length, scene units."""
     @property
-    def pile_radius(self) -> float: ...
+    def pile_radius(self) -> float:
+        """Half width of a slice, scene units."""
     @property
-    def stats(self) -> dict[str, Any]: ...
+    def stats(self) -> dict[str, Any]:
+        """Figures about the sampling: docs/stats.md (Plush) lists the keys."""
     @property
     def roots(self) -> npt.NDArray[np.float32]:
         """(P, 3) pile roots."""
@@ -395,16 +434,28 @@ class PlushField:
 
 @final
 class PlushResult:
-    vertices: npt.NDArray[np.float32]  # (V, 3), V = 4 * slices * piles
-    triangles: npt.NDArray[np.int32]  # (T, 3), two per slice quad
-    edges: npt.NDArray[np.int32]  # (E, 2), five per quad, every edge once
-    corner_edges: npt.NDArray[np.int32]  # (3T,), edge from corner k to the next in its face
-    colors: npt.NDArray[np.float32]  # (V, 4) linear RGBA, darker at the root
-    uvs: npt.NDArray[np.float32]  # (V, 2), each quad (0,0), (1,0), (1,1), (0,1)
-    mask: npt.NDArray[np.float32]  # (V,) 0 round mask (horizontal slice), 1 rectangle
-    horizontal: npt.NDArray[np.uint8]  # (P,) 1 where the pile has horizontal slices
+    """A plush's mesh, as NumPy arrays in the surface's object space (scene units)."""
+
+    vertices: npt.NDArray[np.float32]
+    """(V, 3), V = 4 * slices * piles"""
+    triangles: npt.NDArray[np.int32]
+    """(T, 3), two per slice quad"""
+    edges: npt.NDArray[np.int32]
+    """(E, 2), five per quad, every edge once"""
+    corner_edges: npt.NDArray[np.int32]
+    """(3T,), edge from corner k to the next in its face"""
+    colors: npt.NDArray[np.float32]
+    """(V, 4) linear RGBA, darker at the root"""
+    uvs: npt.NDArray[np.float32]
+    """(V, 2), each quad (0,0), (1,0), (1,1), (0,1)"""
+    mask: npt.NDArray[np.float32]
+    """(V,) 0 round mask (horizontal slice), 1 rectangle"""
+    horizontal: npt.NDArray[np.uint8]
+    """(P,) 1 where the pile has horizontal slices"""
     stats: dict[str, Any]
+    """Figures about the build: docs/stats.md lists every key"""
     field: PlushField
+    """The sampled piles, to view again or rebuild without resampling"""
 
 def plush(
     surface: GridSurface | MeshSurface,
@@ -432,7 +483,7 @@ def plush(
     budget_bytes: int | None = None,
 ) -> PlushResult:
     """Warp-knit plush over `surface`: fractal-noise pile directions, and per pile
-    horizontal or vertical slices for the view (see the README's Plush section)."""
+    horizontal or vertical slices for the view (docs/plush.md; every setting: docs/settings.md)."""
 
 def fractal_noise(
     size: int | tuple[int, int],

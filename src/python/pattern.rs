@@ -87,7 +87,7 @@ impl PyPattern {
         parsed(py, move || StitchPattern::from_chart(&text))
     }
     /// Knitspeak row instructions ("Row 1 (RS): *k2, 2/2 RC, p2; rep from *."): cables,
-    /// decreases, yarn-overs, slips, bobbles, repeats (see the README).
+    /// decreases, yarn-overs, slips, bobbles, repeats (see docs/stitches.md).
     #[staticmethod]
     fn from_knitspeak(py: Python<'_>, text: &Bound<'_, PyAny>) -> PyResult<Self> {
         let text = text_arg(text, "the Knitspeak text")?;

@@ -364,7 +364,7 @@ fn colors_of(
     }
 }
 
-/// Grows warp-knit plush over `surface`. See the README for every argument.
+/// Grows warp-knit plush over `surface`. See docs/settings.md for every argument.
 #[pyfunction]
 #[pyo3(signature = (
     surface, *, courses=None, wales=None, gauge=None, piles_per_stitch=1, pile_length=None,

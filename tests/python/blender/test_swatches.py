@@ -1,4 +1,4 @@
-"""scripts/swatches.py (the README's swatch gallery) renders a swatch that shows yarn."""
+"""scripts/swatches.py (the swatch gallery of docs/stitches.md) renders a swatch that shows yarn."""
 
 import importlib.util
 from pathlib import Path

@@ -26,9 +26,10 @@ def charts() -> ModuleType:
     return module
 
 
-#: Stockinette's clearance at the default yarn, interlocked (README, "Every course interlocks"):
-#: 0.955 on a 12 x 10 cm sheet, finished. The earlier assertion of more than 1.0 was
-#: the stacked knit's figure (courses lying over each other like roof shingles).
+#: Stockinette's clearance at the default yarn, interlocked (docs/how-it-works.md, "Every
+#: course interlocks"): 0.955 on a 12 x 10 cm sheet, finished. The earlier assertion of
+#: more than 1.0 was the stacked knit's figure (courses lying over each other like roof
+#: shingles).
 STOCKINETTE_FLOOR = 0.9
 
 

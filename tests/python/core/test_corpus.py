@@ -7,8 +7,8 @@ a 12 x 10 cm sheet and on a tube knitted in the round (its circumference whole r
 5 mm stitches, the sheet's stitch, so the two share one tuning) with every interlock crossing
 the right way round and no free loop. Clearance is held to what this commit measures
 (`FLOORS`, a floor 0.02 under it): most patterns fall short of the issue's 0.95, and the
-README's corpus table (`scripts/corpus_table.py`) says so; a change that loses clearance
-shows here.
+corpus table in docs/where-it-breaks.md (`scripts/corpus_table.py`) says so; a change that
+loses clearance shows here.
 """
 
 from __future__ import annotations

@@ -66,7 +66,7 @@ def test_the_table_is_whole() -> None:
     assert by_name["hidden_supersampling"]["property"] == "cull_hidden_samples"
 
 
-@pytest.mark.parametrize("callable_", [knitwear.Knit, knitwear.knit_texture])
+@pytest.mark.parametrize("callable_", [knitwear.Knit, knitwear.knit, knitwear.knit_texture])
 def test_signatures_default_as_the_table_says(callable_: Any) -> None:
     params = inspect.signature(callable_).parameters
     checked = 0
@@ -169,14 +169,29 @@ def test_the_core_refuses_just_outside_the_declared_range(setting: dict[str, Any
                 ), str(raised.value)
 
 
-def test_the_readmes_settings_table_is_current() -> None:
+def test_the_settings_reference_is_current() -> None:
     spec = importlib.util.spec_from_file_location(
         "settings_table", STUB.parents[2] / "scripts" / "settings_table.py"
     )
     assert spec and spec.loader
     table = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(table)
-    readme = table.README.read_text()
+    readme = table.PAGE.read_text()
     assert table.updated(readme) == readme, "run scripts/settings_table.py"
     for s in SETTINGS + PLUSH:
         assert s["doc"] in readme, s["name"]
+
+
+def test_knits_help_gives_every_settings_meaning_default_and_range() -> None:
+    """`help(knitwear.knit)` is a reference: each setting's doc, default and range with its
+    unit, from the same functions that write docs/settings.md."""
+    from knitwear import settings_text
+
+    doc = " ".join((knitwear.knit.__doc__ or "").split())
+    for s in SETTINGS:
+        assert " ".join(s["doc"].split()) in doc, s["name"]
+        said = f"Default {settings_text.default(s)}; {settings_text.value_range(s)}."
+        assert " ".join(said.split()) in doc, s["name"]
+    assert list(inspect.signature(knitwear.knit).parameters) == list(
+        inspect.signature(knitwear.Knit).parameters
+    )
