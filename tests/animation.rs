@@ -58,11 +58,26 @@ fn stockinette() -> StitchPattern {
 fn positions_only_equals_a_full_build_bit_for_bit() {
     let p = params();
     let prepared = PreparedKnit::new(&rest(), &stockinette(), &p).unwrap();
-    for surface in [rest(), sheet(1.2, false, |p| p, Mat3::IDENTITY)] {
+    // The first call draws the fibres and keeps the draws; the frames after it sweep the
+    // kept draws along another pose, and must still give that pose's build exactly.
+    let bent = || sheet(1.2, false, |p| p, Mat3::IDENTITY);
+    for surface in [rest(), bent(), rest()] {
         let full = prepared.build(&surface).unwrap();
         let mut positions = vec![f32::NAN; 3 * prepared.vertex_count()];
         prepared.positions_into(&surface, &mut positions).unwrap();
         assert_eq!(positions, full.positions);
+        let (mut normals, mut tangents) = (positions.clone(), positions.clone());
+        prepared
+            .positions_and_shading_into(
+                &surface,
+                &mut positions,
+                Some(&mut normals),
+                Some(&mut tangents),
+            )
+            .unwrap();
+        assert_eq!(positions, full.positions);
+        assert_eq!(normals, full.normals);
+        assert_eq!(tangents, full.tangents);
     }
     // And the one-shot `knit` is the prepared knit's build.
     let once = knit(&rest(), &stockinette(), &p).unwrap();

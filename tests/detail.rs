@@ -223,6 +223,14 @@ fn detail_is_deterministic_on_any_thread_count_and_positions_match_build() {
     let mut pos = vec![0.0; 3 * b.vertex_count()];
     b.positions_into(&strip(), &mut pos).unwrap();
     assert_eq!(pos, oa.positions);
+    // A later frame sweeps the draws the first one kept, coarser levels' spans included.
+    let stretched = PlaneSurface {
+        height: 0.66,
+        ..strip()
+    };
+    b.positions_into(&stretched, &mut pos).unwrap();
+    assert_eq!(pos, b.build(&stretched).unwrap().positions);
+    assert_ne!(pos, oa.positions);
 }
 
 #[test]

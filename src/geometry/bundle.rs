@@ -242,23 +242,253 @@ fn fibre_direction(along: Vec3, out: Vec3, around: f32) -> Vec3 {
         .unwrap_or(along)
 }
 
-/// Builds the bundle of one yarn piece into `out`.
+/// What a bundle's random draws and its plies make of each vertex, wherever its centreline
+/// lies: the part of [`build_bundle`] that does not move with the surface. An animated knit
+/// draws it once ([`bundle_profile`]) and each frame only sweeps ([`sweep_bundle`]): the
+/// draws and the plies' outline were half of the core's work on a frame (10,000 stitches,
+/// 2 cores: 91 ms with them, 44 ms without; `benchmarks/bench_follow.py`).
 ///
-/// The normals it writes (where `out` takes them) are the swept tube's, not the triangles':
-/// each vertex's unit direction out from its ring's centre in the ring's plane (a ring
-/// point's ring direction, an apex's direction at its angle). The triangles are fibres lying
-/// on that tube, and shading them as the tube (Gouraud shading with the cylinder's normals,
-/// as the paper does) shows their randomness as texture, not as facets. They depend only on
-/// the ring frames, so a culled knit and every frame of an animated one get them alike.
-///
-/// The tangents it writes are the fibres' directions at each vertex, for a material's
-/// anisotropic highlight: unit, perpendicular to the vertex's normal, along the yarn and
-/// slanted round it as the plies' helix through that point runs (slope round the yarn per
-/// unit along it: the point's distance from the centreline, at most the yarn radius, times
-/// [`super::plies::twist_rate`] over the span's length; an apex pushed out by the fluff
-/// keeps the slant of the yarn's surface). A one-ply yarn slants the same way: its fibres
-/// are twisted too. Like the normals they depend only on the centreline, so a culled knit
-/// and every frame of an animated one get them alike.
+/// Invariant: it belongs to one bundle's rings, closedness and settings; a sweep of another
+/// bundle reads the wrong values.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct BundleProfile {
+    /// Per vertex, in the bundle's layout (ring points, then apexes): its distance from the
+    /// centreline along its direction, scene units (the yarn radius times the plies' outline
+    /// there, and for an apex its random push).
+    radial: Vec<f32>,
+    /// Per apex: how far it leans past its edge's end round the yarn, in apex steps
+    /// (`0..=APEX_STEPS`).
+    lean: Vec<u8>,
+}
+
+impl BundleProfile {
+    /// Heap bytes it holds.
+    pub fn bytes(&self) -> usize {
+        4 * self.radial.capacity() + self.lean.capacity()
+    }
+}
+
+/// The rings of one bundle and how its triangles reach between them (see the module docs).
+#[derive(Debug, Clone, Copy)]
+struct RingLayout {
+    rings: usize,
+    /// Points per ring.
+    m: usize,
+    /// Points per ring at full detail: the draws' rings.
+    mf: usize,
+    closed: bool,
+    two_intervals: bool,
+    /// Ring pairs (triangles `2m` each).
+    pairs: usize,
+}
+
+impl RingLayout {
+    fn new(
+        rings: usize,
+        closed: bool,
+        settings: &BundleSettings,
+        draws: Option<&FullDensityDraws>,
+    ) -> Self {
+        let m = settings.ring_segments;
+        let counts = bundle_counts(rings, m, closed);
+        Self {
+            rings,
+            m,
+            mf: draws.map_or(m, |d| d.ring_segments),
+            closed,
+            two_intervals: settings.two_intervals,
+            pairs: counts.triangles / (2 * m),
+        }
+    }
+
+    /// The ring one past `j` along the yarn (`j` itself at an open end).
+    fn after(&self, j: usize) -> usize {
+        match (self.closed, j + 1 < self.rings) {
+            (true, _) => (j + 1) % self.rings,
+            (false, true) => j + 1,
+            (false, false) => j,
+        }
+    }
+
+    /// The ring one before `i` along the yarn (`i` itself at an open end).
+    fn before(&self, i: usize) -> usize {
+        match (self.closed, i > 0) {
+            (true, _) => (i + self.rings - 1) % self.rings,
+            (false, true) => i - 1,
+            (false, false) => i,
+        }
+    }
+
+    /// Half `half` of ring pair `i` (0: the edges of ring `i`, apexes towards the ring after
+    /// the next; 1: the edges of the next ring, apexes towards the ring before `i`): its
+    /// edges' ring, its apexes' ring, and whether they reach that far ring (and so lean).
+    /// At an open end (or round a closed piece of two rings) the apex stops at the near ring,
+    /// without a lean: one interval leaves no room to lean and stay closed.
+    fn half(&self, i: usize, half: usize) -> (usize, usize, bool) {
+        let j = (i + 1) % self.rings;
+        let (edge_ring, near, far) = if half == 0 {
+            (i, j, self.after(j))
+        } else {
+            (j, i, self.before(i))
+        };
+        let reaches = self.two_intervals && far != near && far != edge_ring;
+        (edge_ring, if reaches { far } else { near }, reaches)
+    }
+
+    /// The angle round its ring (radians from the frame's first axis, before the ring's
+    /// phase) of the apex of edge `k` in `half`, leaning `lean` apex steps; at full detail,
+    /// also its index in the `APEX_STEPS * m` apex angles.
+    fn apex_angle(&self, k: usize, half: usize, lean: usize) -> (f32, Option<usize>) {
+        let m = self.m;
+        if m == self.mf {
+            // Up to one segment past the edge's leading end, in the plies' turn: at
+            // [k + 1, k + 2] segments going forward, [k - 1, k] going back.
+            let steps = APEX_STEPS * m;
+            let q = if half == 0 {
+                ((k + 1) * APEX_STEPS + lean) % steps
+            } else {
+                (k * APEX_STEPS + steps - lean) % steps
+            };
+            return (TAU * q as f32 / steps as f32, Some(q));
+        }
+        // A coarser level leans as far round the yarn as full detail does (in full-detail
+        // segments): leaning by its own, wider segments would send the strand through the
+        // tube, where it shades as a back face.
+        let turn = lean as f32 / (APEX_STEPS * self.mf) as f32;
+        let angle = if half == 0 {
+            TAU * ((k + 1) as f32 / m as f32 + turn)
+        } else {
+            TAU * (k as f32 / m as f32 - turn)
+        };
+        (angle, None)
+    }
+}
+
+/// The plies' twist at each ring: counted in the piece's full-density samples.
+fn ply_twist(i: usize, settings: &BundleSettings, draws: Option<&FullDensityDraws>) -> f32 {
+    match draws {
+        Some(d) => twist(d.samples[i], settings.samples_per_loop),
+        None => twist(i, settings.samples_per_loop),
+    }
+}
+
+/// Draws the random part of one yarn piece's bundle of `rings` rings (see the module docs
+/// and [`BundleProfile`]) and, where `colors` is given (`4 * vertices` floats, linear RGBA),
+/// writes its vertex colours: `owner(i)` is the (course, wale) of the stitch ring `i`
+/// belongs to, `color_of(course, wale)` that stitch's linear RGB colour; `draws`: the
+/// full-density stream for a span of a piece (`None`: the piece's own rings, drawn in
+/// order).
+pub fn bundle_profile(
+    rings: usize,
+    closed: bool,
+    owner: &dyn Fn(usize) -> (usize, usize),
+    color_of: &dyn Fn(usize, usize) -> [f32; 3],
+    settings: &BundleSettings,
+    draws: Option<&FullDensityDraws>,
+    mut colors: Option<&mut [f32]>,
+) -> BundleProfile {
+    let layout = RingLayout::new(rings, closed, settings, draws);
+    let (m, mf, pairs) = (layout.m, layout.mf, layout.pairs);
+    let counts = bundle_counts(rings, m, closed);
+    let r = settings.radius;
+    let mut radial = vec![0.0f32; counts.vertices];
+    let mut lean = vec![0u8; counts.triangles];
+    let variation = settings.color_variation.clamp(0.0, 1.0);
+    let shade = |bits: u64, c: [f32; 3]| -> [f32; 4] {
+        let f = 1.0 + variation * (2.0 * unit24(bits) - 1.0);
+        [c[0] * f, c[1] * f, c[2] * f, 1.0]
+    };
+    // The ring points' distances: the plies' outline at each.
+    for i in 0..rings {
+        let (phase, twist) = (ring_phase(m, i), ply_twist(i, settings, draws));
+        for k in 0..m {
+            let rho = ply_radius(settings.plies, TAU * k as f32 / m as f32 + phase, twist);
+            radial[i * m + k] = r * rho;
+        }
+    }
+
+    let apex_base = rings * m;
+    // The full-detail ring point at (or just after) this level's point k.
+    let full_k = |k: usize| (k * mf + m / 2) / m % mf;
+    // A span's draws: the full-density stream's colour draws at each ring's sample (`mf`
+    // per ring) and the triangle draws of the full-detail ring pairs its pairs start from.
+    let mut span_colours = vec![0u32; if draws.is_some() { mf } else { 0 }];
+    let mut pair_draws = vec![0u64; if draws.is_some() { 2 * mf } else { 0 }];
+    let mut back_draws = pair_draws.clone();
+    let mut back_colours = span_colours.clone();
+    let mut current: Option<(usize, usize)> = None;
+    let mut rng = ChaCha8Rng::seed_from_u64(0);
+    for i in 0..rings {
+        let (course, wale) = owner(i);
+        if let Some(d) = draws {
+            let s = d.samples[i];
+            ring_draws(d.streams[s], mf, &mut span_colours, &mut pair_draws);
+            if i < pairs {
+                // Half 1 (ring j's edges, apexes on ring i) of full detail sits in the pair
+                // that ends at ring j's sample.
+                let n = d.streams.len();
+                let back = (d.samples[(i + 1) % rings] + n - 1) % n;
+                if back == s {
+                    back_draws.copy_from_slice(&pair_draws);
+                } else {
+                    ring_draws(d.streams[back], mf, &mut back_colours, &mut back_draws);
+                }
+            }
+        } else if current != Some((course, wale)) {
+            current = Some((course, wale));
+            rng = ChaCha8Rng::seed_from_u64(stitch_seed(settings.seed, course, wale));
+        }
+        let color = color_of(course, wale);
+        for k in 0..m {
+            // Drawn whether or not colours are written, so the random stream (and with it
+            // every apex) is the same in a full build and a positions-only one.
+            let bits = match draws {
+                Some(_) => span_colours[full_k(k)],
+                None => rng.next_u32(),
+            };
+            if let Some(colors) = colors.as_mut() {
+                let v = i * m + k;
+                colors[4 * v..4 * v + 4].copy_from_slice(&shade(bits as u64, color));
+            }
+        }
+        if i >= pairs {
+            continue;
+        }
+        for half in 0..2 {
+            let (_, apex_ring, reaches) = layout.half(i, half);
+            for k in 0..m {
+                let tri = i * 2 * m + half * m + k;
+                // One draw per triangle: 16 bits pick the apex, 24 the push, 24 the shade.
+                let bits = match draws {
+                    Some(_) if half == 0 => pair_draws[full_k(k)],
+                    Some(_) => back_draws[mf + full_k(k)],
+                    None => rng.next_u64(),
+                };
+                let steps = match reaches {
+                    true => (((bits & 0xFFFF) * (APEX_STEPS as u64 + 1)) >> 16) as usize,
+                    false => 0,
+                };
+                let push = 1.0 + settings.fluffiness * unit24(bits >> 16);
+                let (angle, _) = layout.apex_angle(k, half, steps);
+                let rho = ply_radius(
+                    settings.plies,
+                    angle + ring_phase(m, apex_ring),
+                    ply_twist(apex_ring, settings, draws),
+                );
+                let av = apex_base + tri;
+                radial[av] = r * push * rho;
+                lean[tri] = steps as u8;
+                if let Some(colors) = colors.as_mut() {
+                    colors[4 * av..4 * av + 4].copy_from_slice(&shade(bits >> 40, color));
+                }
+            }
+        }
+    }
+    BundleProfile { radial, lean }
+}
+
+/// Builds the bundle of one yarn piece into `out`: its draws ([`bundle_profile`], with the
+/// colours where `out` takes them) swept along the centreline ([`sweep_bundle`]).
 ///
 /// `points`/`normals`: the centreline and the surface normal under each sample; `owner[i]`:
 /// (course, wale) of the stitch that sample `i` belongs to; `color_of(course, wale)`: the
@@ -277,11 +507,58 @@ pub fn build_bundle(
     draws: Option<&FullDensityDraws>,
     out: &mut PieceBuffers,
 ) {
-    let m = settings.ring_segments;
+    let profile = bundle_profile(
+        points.len(),
+        closed,
+        owner,
+        color_of,
+        settings,
+        draws,
+        out.colors.as_deref_mut(),
+    );
+    sweep_bundle(
+        points, normals, closed, ends, settings, draws, &profile, out,
+    );
+}
+
+/// Sweeps a bundle whose draws are `profile` along the centreline `points` (with the
+/// surface normal under each sample, `normals`) into `out`: positions, and the normals,
+/// tangents and topology where `out` takes them (its colours are [`bundle_profile`]'s).
+/// `closed`, `settings` and `draws` must be those `profile` was drawn with; `ends`: as in
+/// [`build_bundle`].
+///
+/// The normals it writes are the swept tube's, not the triangles': each vertex's unit
+/// direction out from its ring's centre in the ring's plane (a ring point's ring direction,
+/// an apex's direction at its angle). The triangles are fibres lying on that tube, and
+/// shading them as the tube (Gouraud shading with the cylinder's normals, as the paper does)
+/// shows their randomness as texture, not as facets. They depend only on the ring frames, so
+/// a culled knit and every frame of an animated one get them alike.
+///
+/// The tangents it writes are the fibres' directions at each vertex, for a material's
+/// anisotropic highlight: unit, perpendicular to the vertex's normal, along the yarn and
+/// slanted round it as the plies' helix through that point runs (slope round the yarn per
+/// unit along it: the point's distance from the centreline, at most the yarn radius, times
+/// [`super::plies::twist_rate`] over the span's length; an apex pushed out by the fluff
+/// keeps the slant of the yarn's surface). A one-ply yarn slants the same way: its fibres
+/// are twisted too. Like the normals they depend only on the centreline, so a culled knit
+/// and every frame of an animated one get them alike.
+#[allow(clippy::too_many_arguments)]
+pub fn sweep_bundle(
+    points: &[Vec3],
+    normals: &[Vec3],
+    closed: bool,
+    ends: EndTangents,
+    settings: &BundleSettings,
+    draws: Option<&FullDensityDraws>,
+    profile: &BundleProfile,
+    out: &mut PieceBuffers,
+) {
     let rings = points.len();
-    let counts = bundle_counts(rings, m, closed);
-    let pairs = counts.triangles / (2 * m);
+    let layout = RingLayout::new(rings, closed, settings, draws);
+    let (m, pairs) = (layout.m, layout.pairs);
     let r = settings.radius;
+    let radial = &profile.radial;
+    debug_assert_eq!(radial.len(), bundle_counts(rings, m, closed).vertices);
     let (cos, sin): (Vec<f32>, Vec<f32>) = (0..m)
         .map(|k| TAU * k as f32 / m as f32)
         .map(|a| {
@@ -290,11 +567,6 @@ pub fn build_bundle(
         })
         .unzip();
 
-    // The plies' twist at ring i: counted in the piece's full-density samples.
-    let ply_twist = |i: usize| match draws {
-        Some(d) => twist(d.samples[i], settings.samples_per_loop),
-        None => twist(i, settings.samples_per_loop),
-    };
     // How fast the twist turns along this span, radians per scene unit: its full-density
     // samples' turns over its length. Even along the yarn, as real yarn's twist is: the
     // samples bunch where the yarn curves (eight times closer at a loop's head than along
@@ -328,23 +600,21 @@ pub fn build_bundle(
             Some(t) => frame_from_tangent(t, normals[i]),
             None => ring_frame(points, normals, i, closed),
         };
-        let phase = ring_phase(m, i);
-        let (phase_sin, phase_cos) = crate::portable_math::sin_cos(phase);
+        let (phase_sin, phase_cos) = crate::portable_math::sin_cos(ring_phase(m, i));
         let (a, b) = (phase_cos * a + phase_sin * b, phase_cos * b - phase_sin * a);
         frames[i] = (a, b);
-        let twist = ply_twist(i);
         for k in 0..m {
+            let v = i * m + k;
             let d = cos[k] * a + sin[k] * b;
             if let Some(n) = out.normals.as_mut() {
-                n[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&d.to_array());
+                n[3 * v..3 * v + 3].copy_from_slice(&d.to_array());
             }
-            let rho = ply_radius(settings.plies, TAU * k as f32 / m as f32 + phase, twist);
             if let Some(t) = out.tangents.as_mut() {
-                let f = fibre_direction(a.cross(b), d, r * rho * turn_rate);
-                t[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&f.to_array());
+                let f = fibre_direction(a.cross(b), d, radial[v] * turn_rate);
+                t[3 * v..3 * v + 3].copy_from_slice(&f.to_array());
             }
-            let p = points[i] + r * rho * d;
-            out.positions[3 * (i * m + k)..3 * (i * m + k) + 3].copy_from_slice(&p.to_array());
+            let p = points[i] + radial[v] * d;
+            out.positions[3 * v..3 * v + 3].copy_from_slice(&p.to_array());
         }
     }
 
@@ -359,17 +629,8 @@ pub fn build_bundle(
         }
     }
 
-    let variation = settings.color_variation.clamp(0.0, 1.0);
-    let shade = |bits: u64, c: [f32; 3]| -> [f32; 4] {
-        let f = 1.0 + variation * (2.0 * unit24(bits) - 1.0);
-        [c[0] * f, c[1] * f, c[2] * f, 1.0]
-    };
-
     let apex_base = rings * m;
-    // A span's draws: the full-density stream's colour draws at each ring's sample (`mf`
-    // per ring) and the triangle draws of the full-detail ring pairs its pairs start from.
-    let mf = draws.map_or(m, |d| d.ring_segments);
-    // Apex angles: APEX_STEPS per ring segment.
+    // The apex angles of full detail: APEX_STEPS per ring segment.
     let steps = APEX_STEPS * m;
     let (apex_cos, apex_sin): (Vec<f32>, Vec<f32>) = (0..steps)
         .map(|q| TAU * q as f32 / steps as f32)
@@ -378,136 +639,37 @@ pub fn build_bundle(
             (c, s)
         })
         .unzip();
-    // The ring one past `j` along the yarn (`j` itself at an open end), and one before `i`.
-    let after = |j: usize| match (closed, j + 1 < rings) {
-        (true, _) => (j + 1) % rings,
-        (false, true) => j + 1,
-        (false, false) => j,
-    };
-    let before = |i: usize| match (closed, i > 0) {
-        (true, _) => (i + rings - 1) % rings,
-        (false, true) => i - 1,
-        (false, false) => i,
-    };
-    // The full-detail ring point at (or just after) this level's point k.
-    let full_k = |k: usize| (k * mf + m / 2) / m % mf;
-    let mut span_colours = vec![0u32; if draws.is_some() { mf } else { 0 }];
-    let mut pair_draws = vec![0u64; if draws.is_some() { 2 * mf } else { 0 }];
-    let mut back_draws = pair_draws.clone();
-    let mut back_colours = span_colours.clone();
-    let mut current: Option<(usize, usize)> = None;
-    let mut rng = ChaCha8Rng::seed_from_u64(0);
-    for i in 0..rings {
-        let (course, wale) = owner(i);
-        if let Some(d) = draws {
-            let s = d.samples[i];
-            ring_draws(d.streams[s], mf, &mut span_colours, &mut pair_draws);
-            if i < pairs {
-                // Half 1 (ring j's edges, apexes on ring i) of full detail sits in the pair
-                // that ends at ring j's sample.
-                let n = d.streams.len();
-                let back = (d.samples[(i + 1) % rings] + n - 1) % n;
-                if back == s {
-                    back_draws.copy_from_slice(&pair_draws);
-                } else {
-                    ring_draws(d.streams[back], mf, &mut back_colours, &mut back_draws);
-                }
-            }
-        } else if current != Some((course, wale)) {
-            current = Some((course, wale));
-            rng = ChaCha8Rng::seed_from_u64(stitch_seed(settings.seed, course, wale));
-        }
-        let color = color_of(course, wale);
-        for k in 0..m {
-            // Drawn whether or not colours are written, so the random stream (and with it
-            // every apex position) is the same in a full build and a positions-only one.
-            let bits = match draws {
-                Some(_) => span_colours[full_k(k)],
-                None => rng.next_u32(),
-            };
-            let c = shade(bits as u64, color);
-            if let Some(colors) = out.colors.as_mut() {
-                colors[4 * (i * m + k)..4 * (i * m + k) + 4].copy_from_slice(&c);
-            }
-        }
-        if i >= pairs {
-            continue;
-        }
-        let j = (i + 1) % rings;
+    for i in 0..pairs {
         // Two halves: the edges of ring i with apexes on the ring after j, then the edges of
         // ring j with apexes on the ring before i (see the module docs).
         for half in 0..2 {
-            let (edge_ring, near, far) = if half == 0 {
-                (i, j, after(j))
-            } else {
-                (j, i, before(i))
-            };
-            // At an open end (or round a closed piece of two rings) the apex stops at the
-            // near ring, without a lean: one interval leaves no room to lean and stay closed.
-            let reaches = settings.two_intervals && far != near && far != edge_ring;
-            let apex_ring = if reaches { far } else { near };
+            let (edge_ring, apex_ring, _) = layout.half(i, half);
+            let (a, b) = frames[apex_ring];
+            let along = out.tangents.is_some().then(|| a.cross(b));
             for k in 0..m {
                 let tri = i * 2 * m + half * m + k;
-                // One draw per triangle: 16 bits pick the apex, 24 the push, 24 the shade.
-                let bits = match draws {
-                    Some(_) if half == 0 => pair_draws[full_k(k)],
-                    Some(_) => back_draws[mf + full_k(k)],
-                    None => rng.next_u64(),
-                };
-                // Up to one segment past the edge's leading end, in the plies' turn: at
-                // [k + 1, k + 2] segments going forward, [k - 1, k] going back.
-                let lean = match reaches {
-                    true => (((bits & 0xFFFF) * (APEX_STEPS as u64 + 1)) >> 16) as usize,
-                    false => 0,
-                };
-                let push = 1.0 + settings.fluffiness * unit24(bits >> 16);
-                let (a, b) = frames[apex_ring];
-                let (apex_cos_sin, apex_angle) = if m == mf {
-                    let q = if half == 0 {
-                        ((k + 1) * APEX_STEPS + lean) % steps
-                    } else {
-                        (k * APEX_STEPS + steps - lean) % steps
-                    };
-                    ((apex_cos[q], apex_sin[q]), TAU * q as f32 / steps as f32)
-                } else {
-                    // A coarser level leans as far round the yarn as full detail does (in
-                    // full-detail segments): leaning by its own, wider segments would send
-                    // the strand through the tube, where it shades as a back face.
-                    let turn = lean as f32 / (APEX_STEPS * mf) as f32;
-                    let angle = if half == 0 {
-                        TAU * ((k + 1) as f32 / m as f32 + turn)
-                    } else {
-                        TAU * (k as f32 / m as f32 - turn)
-                    };
-                    let (sin, cos) = crate::portable_math::sin_cos(angle);
-                    ((cos, sin), angle)
-                };
-                let apex_dir = apex_cos_sin.0 * a + apex_cos_sin.1 * b;
-                let rho = ply_radius(
-                    settings.plies,
-                    apex_angle + ring_phase(m, apex_ring),
-                    ply_twist(apex_ring),
-                );
-                let apex = points[apex_ring] + r * push * rho * apex_dir;
                 let av = apex_base + tri;
+                let (cos_a, sin_a) = match layout.apex_angle(k, half, profile.lean[tri] as usize) {
+                    (_, Some(q)) => (apex_cos[q], apex_sin[q]),
+                    (angle, None) => {
+                        let (s, c) = crate::portable_math::sin_cos(angle);
+                        (c, s)
+                    }
+                };
+                let apex_dir = cos_a * a + sin_a * b;
+                let apex = points[apex_ring] + radial[av] * apex_dir;
                 out.positions[3 * av..3 * av + 3].copy_from_slice(&apex.to_array());
                 if let Some(n) = out.normals.as_mut() {
                     n[3 * av..3 * av + 3].copy_from_slice(&apex_dir.to_array());
                 }
-                if let Some(t) = out.tangents.as_mut() {
+                if let (Some(t), Some(along)) = (out.tangents.as_mut(), along) {
                     // A pushed-out strand keeps the slant of the surface it stands from.
-                    let around = r * (push * rho).min(1.0) * turn_rate;
-                    let f = fibre_direction(a.cross(b), apex_dir, around);
+                    let f = fibre_direction(along, apex_dir, radial[av].min(r) * turn_rate);
                     t[3 * av..3 * av + 3].copy_from_slice(&f.to_array());
-                }
-                let ac = shade(bits >> 40, color);
-                if let Some(colors) = out.colors.as_mut() {
-                    colors[4 * av..4 * av + 4].copy_from_slice(&ac);
                 }
                 let Some(topo) = out.topology.as_mut() else {
                     continue;
                 };
-
                 let (v0, v1) = if half == 0 {
                     (edge_ring * m + k, edge_ring * m + (k + 1) % m)
                 } else {

@@ -6,8 +6,9 @@ pub mod plies;
 mod subset;
 
 pub use bundle::{
-    build_bundle, bundle_counts, piece_streams, stitch_seed, BundleCounts, BundleSettings,
-    EndTangents, FullDensityDraws, PieceBuffers, TopologyBuffers,
+    build_bundle, bundle_counts, bundle_profile, piece_streams, stitch_seed, sweep_bundle,
+    BundleCounts, BundleProfile, BundleSettings, EndTangents, FullDensityDraws, PieceBuffers,
+    TopologyBuffers,
 };
 pub use frames::{frame_from_tangent, ring_frame};
 pub use subset::{MeshSubset, SubsetBuffers};

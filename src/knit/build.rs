@@ -11,12 +11,24 @@ use super::*;
 use crate::detail::Level;
 use crate::error::{KnitError, Result};
 use crate::geometry::{
-    build_bundle, piece_streams, stitch_seed, BundleCounts, EndTangents, FullDensityDraws,
-    PieceBuffers, TopologyBuffers,
+    build_bundle, bundle_profile, piece_streams, stitch_seed, sweep_bundle, BundleCounts,
+    BundleProfile, BundleSettings, EndTangents, FullDensityDraws, PieceBuffers, TopologyBuffers,
 };
 use crate::output_buffer;
 use crate::parallel::{run_in_pool, split_lengths};
 use crate::surface::Surface;
+
+/// What one span's bundle is built from (see [`crate::geometry::build_bundle`]).
+struct SpanInputs<'a> {
+    points: &'a [Vec3],
+    normals: &'a [Vec3],
+    owner: &'a dyn Fn(usize) -> (usize, usize),
+    color_of: &'a dyn Fn(usize, usize) -> [f32; 3],
+    closed: bool,
+    ends: EndTangents,
+    settings: &'a BundleSettings,
+    draws: Option<&'a FullDensityDraws<'a>>,
+}
 
 /// A whole build and the centrelines it was swept along (cloning a knit does not clone it).
 #[derive(Default)]
@@ -211,6 +223,13 @@ impl PreparedKnit {
         }
         let nrm = per_span(normals, &lengths);
         let tan = per_span(tangents, &lengths);
+        // The draws are the same on every frame: made on the first, swept on every one.
+        let profiles = self.span_profiles.get_or_init(|| {
+            (0..self.spans.len())
+                .into_par_iter()
+                .map(|k| self.span_profile(k, centrelines))
+                .collect()
+        });
         pos.into_par_iter().zip(nrm).zip(tan).enumerate().for_each(
             |(k, ((positions, normals), tangents))| {
                 if crate::cancel::requested() {
@@ -219,7 +238,7 @@ impl PreparedKnit {
                 let mut bufs = PieceBuffers::positions_only(positions);
                 bufs.normals = normals;
                 bufs.tangents = tangents;
-                self.bundle_span(k, centrelines, &mut bufs);
+                self.bundle_span(k, centrelines, Some(&profiles[k]), &mut bufs);
             },
         );
     }
@@ -259,8 +278,44 @@ impl PreparedKnit {
         c
     }
 
-    /// Sweeps span `k`'s bundle into `bufs` (whatever parts of the output they hold).
-    pub(super) fn bundle_span(&self, k: usize, cl: &Centrelines, bufs: &mut PieceBuffers) {
+    /// Sweeps span `k`'s bundle into `bufs` (whatever parts of the output they hold), its
+    /// draws made afresh (`profile` `None`) or taken from [`Self::span_profile`].
+    pub(super) fn bundle_span(
+        &self,
+        k: usize,
+        cl: &Centrelines,
+        profile: Option<&BundleProfile>,
+        bufs: &mut PieceBuffers,
+    ) {
+        self.with_span(k, cl, |s| match profile {
+            None => build_bundle(
+                s.points, s.normals, s.owner, s.color_of, s.closed, s.ends, s.settings, s.draws,
+                bufs,
+            ),
+            Some(profile) => sweep_bundle(
+                s.points, s.normals, s.closed, s.ends, s.settings, s.draws, profile, bufs,
+            ),
+        })
+    }
+
+    /// Span `k`'s draws ([`BundleProfile`]): what its frames share, wherever the surface
+    /// moves.
+    pub(super) fn span_profile(&self, k: usize, cl: &Centrelines) -> BundleProfile {
+        self.with_span(k, cl, |s| {
+            bundle_profile(
+                s.points.len(),
+                s.closed,
+                s.owner,
+                s.color_of,
+                s.settings,
+                s.draws,
+                None,
+            )
+        })
+    }
+
+    /// Calls `f` with what span `k`'s bundle is built from.
+    fn with_span<R>(&self, k: usize, cl: &Centrelines, f: impl FnOnce(SpanInputs) -> R) -> R {
         let sp = self.spans[k];
         let pc = self.pieces[sp.piece];
         let n = self.samples[sp.piece];
@@ -281,18 +336,16 @@ impl PreparedKnit {
         if whole {
             // Every sample: the piece's own slices, exactly as without detail.
             let owner_of = |i: usize| (pc.course, (pc.first_wale + owner[i] as usize) % wales);
-            build_bundle(
+            return f(SpanInputs {
                 points,
                 normals,
-                &owner_of,
-                &color_of,
-                sp.closed,
-                EndTangents::default(),
+                owner: &owner_of,
+                color_of: &color_of,
+                closed: sp.closed,
+                ends: EndTangents::default(),
                 settings,
-                None,
-                bufs,
-            );
-            return;
+                draws: None,
+            });
         }
         let idx: Vec<usize> = (0..sp.rings).map(|i| sp.sample(i, n)).collect();
         let pts: Vec<Vec3> = idx.iter().map(|&i| points[i]).collect();
@@ -328,17 +381,16 @@ impl PreparedKnit {
             streams: &streams,
             ring_segments: self.level_bundle[Level::Full as usize].ring_segments,
         };
-        build_bundle(
-            &pts,
-            &nrm,
-            &owner_of,
-            &color_of,
-            sp.closed,
+        f(SpanInputs {
+            points: &pts,
+            normals: &nrm,
+            owner: &owner_of,
+            color_of: &color_of,
+            closed: sp.closed,
             ends,
             settings,
-            Some(&draws),
-            bufs,
-        );
+            draws: Some(&draws),
+        })
     }
 
     pub(super) fn build_in_pool(&self, surface: &dyn Surface) -> Result<KnitOutput> {
@@ -440,7 +492,7 @@ impl PreparedKnit {
                             edge_verts,
                         }),
                     };
-                    self.bundle_span(i, centrelines, &mut bufs);
+                    self.bundle_span(i, centrelines, None, &mut bufs);
                 },
             );
 

@@ -84,6 +84,10 @@ pub struct PreparedKnit {
     /// The whole build `cull_hidden` made from the views, kept for the first
     /// [`build`](Self::build) of the same surface.
     first_build: FirstBuild,
+    /// Every span's draws ([`crate::geometry::BundleProfile`]), made by the first
+    /// [`positions_into`](Self::positions_into) and kept for the frames after it (about
+    /// 5 bytes a vertex).
+    span_profiles: std::sync::OnceLock<Vec<crate::geometry::BundleProfile>>,
 }
 
 /// The seen triangles of a knit that culls its hidden yarn.

@@ -403,6 +403,7 @@ impl PreparedKnit {
             radius,
             hidden: None,
             first_build: FirstBuild::default(),
+            span_profiles: Default::default(),
         };
         if let Some(d) = p.detail.as_ref().filter(|d| d.cull_hidden) {
             // The pass is skipped where the knit has too little full-quality yarn for it to
