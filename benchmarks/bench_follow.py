@@ -12,13 +12,19 @@ medians over --frames frame changes:
             positions and the smooth normals, one pass);
   write     `foreach_set` of the positions and of the custom normals, plus `Mesh.update()`;
   frame     the whole `follow()` (what the frame handler does per knit);
+  unshare   frame less sample, core and write: Blender's copy of the arrays the mesh shares
+            with its evaluated copy, which the frame's first write pays (the parts, timed
+            again after it, do not). Arrays over 32 MB (10,000 stitches: 36 MB each) come
+            from fresh pages every frame; glibc's huge pages make that about 6x cheaper;
   floor     `foreach_set` of the same number of positions alone (the bare cost);
   normals   what the next draw or render pays for normals afterwards (Blender shades with the
             custom normals the frame wrote, from 4.5: about nothing);
   fps       1 / frame, and 1 / (frame + normals);
 and, for comparison, the path that writes positions only (what a knit did before it brought
 its normals, and still does in Blender 4.2): its frame, the recompute Blender then pays on the
-next draw, and its fps with it.
+next draw, and its fps with it. Then it runs itself again with
+GLIBC_TUNABLES=glibc.malloc.hugetlb=1 (a launch-time setting of Blender's process, see
+docs/performance.md) and prints that run's rows.
 No assertions: figures only.
 """
 
@@ -26,6 +32,8 @@ import argparse
 import math
 import os
 import statistics
+import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -38,6 +46,7 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--stitches", type=int, nargs="+", default=[10_000, 50_000])
     parser.add_argument("--frames", type=int, default=9, help="frame changes per figure")
     parser.add_argument("--zip", type=Path, help="extension zip (default: newest dist/*.zip)")
+    parser.add_argument("--once", action="store_true", help="no second run with huge pages")
     return parser.parse_args()
 
 
@@ -137,17 +146,29 @@ def main() -> None:
     rows = [bench(n, args.frames) for n in args.stitches]
     print()
     print(f"{'stitches':>9} {'vertices':>10} {'sample':>8} {'core':>8} {'write':>8} "
-          f"{'frame':>8} {'floor':>8} {'normals':>8} {'fps':>6} {'+norm':>6}   (ms)")
+          f"{'unshare':>8} {'frame':>8} {'floor':>8} {'normals':>8} {'fps':>6} {'+norm':>6}"
+          "   (ms)")
     for r in rows:
+        unshare = r["frame"] - r["sample"] - r["core"] - r["write"]
         print(f"{r['stitches']:9,} {r['vertices']:10,} {r['sample']:8.1f} {r['core']:8.1f} "
-              f"{r['write']:8.1f} {r['frame']:8.1f} {r['floor']:8.1f} {r['normals']:8.1f} "
-              f"{1000 / r['frame']:6.1f} {1000 / (r['frame'] + r['normals']):6.1f}")
+              f"{r['write']:8.1f} {unshare:8.1f} {r['frame']:8.1f} {r['floor']:8.1f} "
+              f"{r['normals']:8.1f} {1000 / r['frame']:6.1f} "
+              f"{1000 / (r['frame'] + r['normals']):6.1f}")
     print()
     print("positions only (Blender recomputes the normals on the next draw):")
     print(f"{'stitches':>9} {'frame':>8} {'normals':>8} {'fps':>6} {'+norm':>6}   (ms)")
     for r in rows:
         print(f"{r['stitches']:9,} {r['old_frame']:8.1f} {r['old_normals']:8.1f} "
               f"{1000 / r['old_frame']:6.1f} {1000 / (r['old_frame'] + r['old_normals']):6.1f}")
+    tunable = "glibc.malloc.hugetlb=1"
+    if args.once or os.environ.get("GLIBC_TUNABLES") == tunable:
+        return
+    print()
+    print(f"again, Blender started with GLIBC_TUNABLES={tunable}:")
+    sys.stdout.flush()
+    argv = [sys.executable, __file__, "--once", "--frames", str(args.frames), "--stitches",
+            *map(str, args.stitches)] + (["--zip", str(args.zip)] if args.zip else [])
+    subprocess.run(argv, env={**os.environ, "GLIBC_TUNABLES": tunable}, check=True)
 
 
 if __name__ == "__main__":
