@@ -15,12 +15,14 @@ for names, units and defaults). Every failure a user can cause raises a `knitwea
 subclass with a message fit for a report, and leaves the blend file as it was.
 
 A knit and an update are also available as steps (`knit_steps`, `update_steps`): generators
-that yield the one job only the core runs (a `CoreJob`: no `bpy`, the GIL released inside),
-are sent its result back and return the outcome. `run_steps` runs the job inline (what
-`knit` and `update` do); the operators run it on a worker thread (`core_thread`) so the
-interface stays live and Esc stops it.
+that yield the jobs only the core runs (each a `CoreJob`: no `bpy`, the GIL released
+inside: the knit's preparation, then the wait for its build, which runs on a thread of its own
+while the steps make the mesh's triangle template), are sent each result back and return the
+outcome. `run_steps` runs the jobs inline (what `knit` and `update` do); the operators run
+them on a worker thread (`core_thread`) so the interface stays live and Esc stops them.
 """
 
+import threading
 import time
 from collections.abc import Callable, Generator, Mapping
 from dataclasses import dataclass
@@ -338,7 +340,7 @@ def _core_steps(
     progress: Progress | None,
 ) -> Generator[CoreJob, Any, tuple[sampling.Sampled, Any, Bound, tuple[float, float]]]:
     """Everything that can fail, before any datablock is created: sampling here, then the
-    core's knit as the one `CoreJob`. Returns the seconds of both: (sampling, core)."""
+    core's knit as `CoreJob`s. Returns the seconds of both: (sampling, core)."""
     try:
         return (yield from _core_steps_sized(source, context, settings, progress))
     except knitwear.BudgetError as err:
@@ -381,12 +383,19 @@ def _core_steps_sized(
     detail = detail_settings(source, context, settings, sampled.origin)
     sampling_seconds = time.perf_counter() - t_sampling
 
-    def job() -> tuple[Any, Any, float]:
+    def prepare() -> tuple[Any, float]:
         t0 = time.perf_counter()
         knit = knitwear.Knit(sampled.surface, pattern, **kwargs, **detail)
-        return knit, knit.build(sampled.surface), time.perf_counter() - t0
+        return knit, time.perf_counter() - t0
 
-    knit, result, core_seconds = yield job
+    knit, prepare_seconds = yield prepare
+    # The core builds on a thread of its own (it holds no GIL) while this one, which alone may
+    # touch bpy, makes the mesh's triangle template: the first knit of a face count no longer
+    # waits for it after the core (about 0.1 s per million triangles).
+    build = _BuildThread(knit, sampled.surface)
+    mesh_build.ready_template(knit.triangle_count)
+    result, build_seconds = yield build.result
+    core_seconds = prepare_seconds + build_seconds
     levels = knit.stitch_levels
     bound = Bound(
         knit.counts,
@@ -399,6 +408,31 @@ def _core_steps_sized(
     if progress:
         progress(0.8)
     return sampled, result, bound, (sampling_seconds, core_seconds)
+
+
+class _BuildThread:
+    """``knit.build(surface)`` started on a thread now; `result` (a `CoreJob`) waits for it
+    and returns (the result, its seconds) or raises what the build raised."""
+
+    def __init__(self, knit: Any, surface: Any) -> None:
+        self._outcome: tuple[Any, float] | None = None
+        self._error: BaseException | None = None
+        self._thread = threading.Thread(target=self._run, args=(knit, surface), daemon=True)
+        self._thread.start()
+
+    def _run(self, knit: Any, surface: Any) -> None:
+        t0 = time.perf_counter()
+        try:
+            self._outcome = (knit.build(surface), time.perf_counter() - t0)
+        except BaseException as e:  # noqa: BLE001 - raised again by `result`
+            self._error = e
+
+    def result(self) -> tuple[Any, float]:
+        self._thread.join()
+        if self._error is not None:
+            raise self._error
+        assert self._outcome is not None
+        return self._outcome
 
 
 def _store(

@@ -1,7 +1,7 @@
 """A knit's core job on a worker thread, so that the interface stays live and Esc can stop it.
 
 `api.knit_steps` and `api.update_steps` do their Blender work (sampling, then building the
-mesh) on the main thread and yield the one job only the core runs. `StepsOnThread` runs that
+mesh) on the main thread and yield the jobs only the core runs. `StepsOnThread` runs each
 job on a worker thread while a modal operator polls it from a timer; `cancel` asks the core
 to stop (`knitwear.cancel`: every running call raises `knitwear.CancelledError` within a
 fraction of a second). A cancelled knit closes its steps before they create anything, so the

@@ -62,6 +62,13 @@ def _triangle_template(nf: int) -> bpy.types.Mesh:
     return template
 
 
+def ready_template(nf: int) -> None:
+    """Make the triangle template for ``nf`` faces now, if it is not cached (see
+    `_triangle_template`): a knit's steps call it while the core builds, so that the first
+    mesh of a face count does not wait for it afterwards."""
+    _triangle_template(nf)
+
+
 def _fill_fast(name: str, result: object) -> bpy.types.Mesh:
     """A new mesh from a template copy, all topology written as attributes with the edges
     the core computed, so that `Mesh.update()` hashes nothing."""

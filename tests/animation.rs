@@ -63,6 +63,7 @@ fn positions_only_equals_a_full_build_bit_for_bit() {
     let bent = || sheet(1.2, false, |p| p, Mat3::IDENTITY);
     for surface in [rest(), bent(), rest()] {
         let full = prepared.build(&surface).unwrap();
+        assert_eq!(full.triangles.len(), 3 * prepared.triangle_count());
         let mut positions = vec![f32::NAN; 3 * prepared.vertex_count()];
         prepared.positions_into(&surface, &mut positions).unwrap();
         assert_eq!(positions, full.positions);

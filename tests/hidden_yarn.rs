@@ -108,6 +108,7 @@ fn only_seen_triangles_are_built_and_they_are_the_whole_knits_own() {
     );
     assert_eq!(out.triangles.len(), 3 * t);
     assert_eq!(out.positions.len(), 3 * culled.vertex_count());
+    assert_eq!(out.triangles.len(), 3 * culled.triangle_count());
     // Every kept triangle is one of the whole knit's, in the whole knit's order, with the
     // same corners and colours.
     let all = corners(&whole);

@@ -261,6 +261,10 @@ class Knit:
     def vertex_count(self) -> int:
         """Vertices of every build and of `positions` (fixed when the knit is bound)."""
     @property
+    def triangle_count(self) -> int:
+        """Triangles of every build (fixed when the knit is bound): a caller can make room
+        for the mesh while the core builds it."""
+    @property
     def yarn_radius(self) -> float:
         """The yarn radius bound at knit time, scene units (pin it with `yarn_radius=` to
         rebuild)."""

@@ -438,6 +438,14 @@ impl PreparedKnit {
             .map_or(self.total.vertices as usize, |h| h.subset.vertex_count())
     }
 
+    /// Triangles of every build (the same on every pose: the topology is fixed when the knit
+    /// is prepared).
+    pub fn triangle_count(&self) -> usize {
+        self.hidden
+            .as_ref()
+            .map_or(self.total.triangles as usize, |h| h.subset.triangle_count())
+    }
+
     /// The linear RGB colour of stitch (course, wale) before the random brightness
     /// variation: from the colour image, else the colour pattern, else the default yarn.
     pub fn stitch_color(&self, course: usize, wale: usize) -> [f32; 3] {

@@ -457,6 +457,12 @@ impl PyKnit {
         self.inner.vertex_count()
     }
 
+    /// Triangles of every build.
+    #[getter]
+    fn triangle_count(&self) -> usize {
+        self.inner.triangle_count()
+    }
+
     /// The yarn radius, scene units.
     #[getter]
     fn yarn_radius(&self) -> f32 {

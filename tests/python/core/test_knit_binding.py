@@ -33,6 +33,7 @@ def test_build_at_rest_is_knit() -> None:
     for name in ("vertices", "triangles", "edges", "corner_edges", "colors"):
         np.testing.assert_array_equal(getattr(built, name), getattr(once, name))
     assert bound.vertex_count == len(once.vertices)
+    assert bound.triangle_count == len(once.triangles) > 0
     assert bound.counts == (8, 10)
     assert bound.topology_key == once.stats["topology_key"]
     assert bound.yarn_radius == pytest.approx(once.yarn_radius)
