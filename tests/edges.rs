@@ -219,3 +219,56 @@ fn the_edges_come_no_closer_than_the_fabric_itself() {
     assert_eq!(order.interlock_agree, order.interlock_decided, "{order:?}");
     assert_eq!((order.free_loops, order.free_feet), (0, 0), "{order:?}");
 }
+
+/// A bind-off holds every loop whichever row of the pattern the fabric ends on. Under a
+/// cable's crossing row the last course's loops lean, and the tuned row heights make that
+/// course short at some node columns and tall at others. The corpus's six-stitch left cable
+/// (`tests/data/corpus/cable-6.ks`, a 3/3 LC on row 5 of 8) bound off on row 4, 28 courses
+/// up a 12 cm sheet, left the chain loop beside each cable unheld (3 loops): its
+/// neighbour's head lay over above the short loop's leg instead of across it. Every course
+/// count of one repeat of rows, each at the default gauge's stitch size (so all share one
+/// tuning), and the 3/3 cable preset (a C6B on row 3) likewise.
+#[test]
+fn a_bind_off_holds_every_loop_on_any_row_of_a_cable() {
+    let corpus = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/corpus/cable-6.ks"
+    ))
+    .unwrap();
+    let patterns = [
+        ("cable-6.ks", StitchPattern::from_text(&corpus).unwrap(), 24),
+        ("cable_c6", StitchPattern::preset("cable_c6").unwrap(), 16),
+    ];
+    let mut failures = Vec::new();
+    for (name, pattern, wales) in patterns {
+        let rows = pattern.height();
+        for courses in 3 * rows..4 * rows {
+            let sheet = PlaneSurface {
+                width: wales as f32 * 0.005,
+                height: courses as f32 * 0.1 / 28.0,
+            };
+            let p = KnitParams {
+                threads: Some(2),
+                courses: Some(courses),
+                wales: Some(wales),
+                ..KnitParams::default()
+            };
+            let knit = PreparedKnit::new(&sheet, &pattern, &p).unwrap();
+            let order = knit.crossing_order(&sheet).unwrap();
+            println!(
+                "{name:10} {courses:2} courses: free loops {}/{}, free feet {}/{}, chain and \
+                 crossings {}/{}",
+                order.free_loops,
+                order.loops,
+                order.free_feet,
+                order.feet,
+                order.agree,
+                order.decided
+            );
+            if (order.free_loops, order.free_feet) != (0, 0) || order.agree != order.decided {
+                failures.push(format!("{name}, {courses} courses: {order:?}"));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}

@@ -5,7 +5,8 @@
 //! when a yarn-over whose decrease the sheet's edge cuts off came to be knitted plain; all
 //! re-recorded when the bundles' triangles came to lie along the tube, when every knit came
 //! to carry the tube's shading normals, and when it came to carry its fibre directions,
-//! issue 16) and finished with them (the default). A refactor that changes one bit of any
+//! issue 16, and when a bind-off loop came to take its height from the taller side of the tile
+//! under it, issue 17) and finished with them (the default). A refactor that changes one bit of any
 //! preset's yarn, colours or topology fails here; so does a machine or thread count that
 //! knits differently from the one that recorded them.
 //!
@@ -22,34 +23,34 @@ use common::digest::digest;
 /// (preset, digest with live loops, digest finished): `examples/output_digest.rs`'s output. `fair_isle+band` is the Fair
 /// Isle preset in the `fair_isle_band` colour chart.
 const GOLDEN: &[(&str, u64, u64)] = &[
-    ("stockinette", 0xbf106a39e89445ee, 0x65ea905994b7a293),
+    ("stockinette", 0xbf106a39e89445ee, 0x4adbcb0c7b2f699c),
     (
         "reverse_stockinette",
         0xb4930b04e5cf1238,
-        0xdffc688962719e2b,
+        0xd5dff4c48884a046,
     ),
-    ("garter", 0x489cf315ce25581a, 0x2882c0bad5672de7),
-    ("rib_1x1", 0xae4d91426c8d39c8, 0xfc6f4400944a1b1b),
-    ("rib_2x2", 0xd297ed7f7c9ef835, 0xdfce07c973be932d),
-    ("seed", 0x0a20f005a02f369b, 0xb4786e3beb164372),
-    ("moss", 0xe61bbafaa6126879, 0xa4d6dad6889dd479),
-    ("basketweave", 0x7d0161614f21c3e3, 0xab87d75ef3b30f92),
-    ("twisted_rib", 0x749ce358e226bfb6, 0x1a676cbd906498fc),
-    ("cable_c4", 0x1c20c2d780788156, 0x57b45c75469b07a7),
-    ("cable_c6", 0xc593c39f2b296d1c, 0xdd22427a88d336b3),
-    ("horseshoe_cable", 0x3b80b4e9800c6dc4, 0x7026b2b806b0cd5b),
-    ("honeycomb_cable", 0xfeac077ae66a2a31, 0x5236d5f75f3fbae3),
-    ("mock_cable_rib", 0xc23e2257e2873733, 0x8400b5964633f4a2),
-    ("twisted_cable_rib", 0x511897c24ab46b9e, 0x34e30b9a3dd5dd0f),
-    ("diamond", 0x536d6e039f587c7c, 0x3684359e7c0473ae),
-    ("chevron", 0x568aeb47f4053b7c, 0xac9cad245b93b871),
-    ("feather_and_fan", 0xf1f792c92c895633, 0xf3f805adc6176b96),
-    ("eyelet_rows", 0x4803e99f7e8ac6fc, 0xbad56e1188d671dd),
-    ("lace_diamond", 0xd840ba07223740d7, 0xc1f4419a3a0528fb),
-    ("bobbles", 0x5d703bae62b092e4, 0xc1afbaddfb7e78a5),
-    ("linen_stitch", 0xd4b88071912db2d7, 0x05bc83a66b438bdc),
-    ("fair_isle", 0xbf106a39e89445ee, 0x65ea905994b7a293),
-    ("fair_isle+band", 0xc46352b2758cb277, 0xffcf0bb377fe1e2e),
+    ("garter", 0x489cf315ce25581a, 0x781195cbf511752f),
+    ("rib_1x1", 0xae4d91426c8d39c8, 0xea09f55280f0da34),
+    ("rib_2x2", 0xd297ed7f7c9ef835, 0x344d96d148c1e11d),
+    ("seed", 0x0a20f005a02f369b, 0xa25c9a0ed70f54fe),
+    ("moss", 0xe61bbafaa6126879, 0x83638ba3cc932f86),
+    ("basketweave", 0x7d0161614f21c3e3, 0x1fca7eab210fa8a7),
+    ("twisted_rib", 0x749ce358e226bfb6, 0xe38abef3f3a35ee9),
+    ("cable_c4", 0x1c20c2d780788156, 0x674c8f51ac54e374),
+    ("cable_c6", 0xc593c39f2b296d1c, 0xe85fe8c4bf3e20b5),
+    ("horseshoe_cable", 0x3b80b4e9800c6dc4, 0x16ea01c022f12610),
+    ("honeycomb_cable", 0xfeac077ae66a2a31, 0x606e76fbd32ff5fa),
+    ("mock_cable_rib", 0xc23e2257e2873733, 0x6319c0e932e2c75d),
+    ("twisted_cable_rib", 0x511897c24ab46b9e, 0x72fa079405d852b8),
+    ("diamond", 0x536d6e039f587c7c, 0xc24f27fd04449fc8),
+    ("chevron", 0x568aeb47f4053b7c, 0x9b56a19f841c3ec8),
+    ("feather_and_fan", 0xf1f792c92c895633, 0x302c1e26559001d0),
+    ("eyelet_rows", 0x4803e99f7e8ac6fc, 0xe9413343ccdee61c),
+    ("lace_diamond", 0xd840ba07223740d7, 0x5398ff897c7853ef),
+    ("bobbles", 0x5d703bae62b092e4, 0x12ed555c1d49069a),
+    ("linen_stitch", 0xd4b88071912db2d7, 0x0eb3a14e09d5a6da),
+    ("fair_isle", 0xbf106a39e89445ee, 0x4adbcb0c7b2f699c),
+    ("fair_isle+band", 0xc46352b2758cb277, 0x02de6e5f3b90ad45),
 ];
 
 #[test]

@@ -32,7 +32,7 @@ use glam::{Vec2, Vec3};
 
 use super::stitch_shape::{landing, stitch_key_points, tile_at};
 use super::{NormalOffsets, YarnPiece, KEY_POINTS};
-use crate::lattice::Lattice;
+use crate::lattice::{Lattice, Tile};
 use crate::pattern::{Face, Form, Stitch, StitchPattern};
 use crate::surface::{Surface, SurfacePoint};
 
@@ -384,7 +384,7 @@ fn bind_off_stitch(
     let (offsets, l, leg) = bind_off_legs(lattice, pattern, offsets, course, wale);
     let s = offsets.loop_shape;
     let t = tile_at(lattice, course, wale as isize);
-    let (across, up) = (t.n1 - t.n0, t.n0 - t.n3);
+    let (across, up) = (t.n1 - t.n0, bind_off_up(&t));
     let at =
         |(across_at, up_at): (f32, f32)| t.n0 + across_at * across + (s.head_reach + up_at) * up;
     let (head, head_lambda, right_top, right_lambda) = if last {
@@ -406,7 +406,7 @@ fn bind_off_stitch(
         // column, so the next tile's top need not continue this one's.
         let n = tile_at(lattice, course, wale as isize + 1);
         let (x, y) = BIND_OFF_HEAD;
-        let head_at = n.n0 + (x - 1.0) * (n.n1 - n.n0) + (s.head_reach + y) * (n.n0 - n.n3);
+        let head_at = n.n0 + (x - 1.0) * (n.n1 - n.n0) + (s.head_reach + y) * bind_off_up(&n);
         // The yarn comes back from the head across the next loop's leg a second time, on
         // the same side: the right leg top stays no further towards that leg than the head
         // and half a diameter.
@@ -415,7 +415,8 @@ fn bind_off_stitch(
     };
     let points: [(Vec2, f32); KEY_POINTS] = [
         (
-            t.n0 - s.sinker_dip * up,
+            // The sinker dips into the last course at the tile's left corner: by its left side.
+            t.n0 - s.sinker_dip * (t.n0 - t.n3),
             bind_off_sinker(lattice, pattern, offsets, course, wale, l[0]),
         ),
         (t.n0 + s.leg_bottom * across, l[1]),
@@ -425,6 +426,29 @@ fn bind_off_stitch(
         (t.n0 + (1.0 - s.leg_bottom) * across, l[5]),
     ];
     finish(points)
+}
+
+/// A row's height over the last course's tile `t`, for the bind-off loop worked on it: the
+/// tile's left side, stretched to the length of the taller of its two sides. Under a cable
+/// row the tuned row heights make the last course short at some node columns and tall at
+/// others ([`crate::lattice::RowHeights`]); the bind-off row is worked plain, and a loop measured by its left side only stood half as
+/// tall as its neighbour, whose head, lying over to it, then passed above the short loop's
+/// leg instead of across it, and nothing held it (a 3/3 cable bound off on the row under its
+/// crossing row). The mean of the sides held it but lowered other loops onto the heads
+/// below (a 2/2 cable's clearance fell from 0.58 to 0.23). On a regular tile both sides are
+/// equal and the left one is taken unchanged, as before.
+fn bind_off_up(t: &Tile) -> Vec2 {
+    let (left, right) = (t.n0 - t.n3, t.n1 - t.n2);
+    let (left_len, right_len) = (left.length(), right.length());
+    // The left side's direction at the taller side's length: a length that tips from one
+    // side to the other moves the loop continuously (taking the right side's vector
+    // outright jumped it sideways where two nearly equal sides swapped under round-off, as
+    // a sheared parent's transform does).
+    if right_len > left_len && left_len > 0.0 {
+        left * (right_len / left_len)
+    } else {
+        left
+    }
 }
 
 /// The depth of the sinker at the left corner of the bind-off loop over (`course`, `wale`):
