@@ -1072,25 +1072,29 @@ fn a_chart_knows_which_of_its_columns_cut_a_stitch_across_its_edge() {
     assert!((0..4).all(|c| ks("Rnd 1: *k2, p2; rep from *.").cuts_at_column(c) == 0));
 }
 
-/// A stitch slipped in two consecutive rows would carry its loop up two rows, which the
-/// skeleton does not build (a slipped loop rises one): the pattern reads and charts, but
-/// knitting it is refused naming the rows and the column. Slips in alternate rows (heel
-/// stitch) or columns (linen stitch), and every preset, knit.
+/// A stitch slipped in every row of the repeat would carry its loop up for ever: the
+/// pattern reads and charts, but knitting it is refused naming the column. Slipped in two or
+/// three rows running (slip columns, mosaic knitting), in alternate rows (heel stitch) or
+/// columns (linen stitch), and every preset, knit.
 #[test]
-fn slips_in_consecutive_rows_are_refused_at_the_knit() {
+fn a_column_slipped_in_every_row_is_refused_at_the_knit() {
     let columns = ks(
         "Row 1 (RS): K1, *sl1 wyib, k3; rep from * to last 2 sts, sl1 wyib, k1.\n\
                       Row 2: P1, *sl1 wyif, p3; rep from * to last 2 sts, sl1 wyif, p1.",
     );
     let m = pattern_error(columns.check_knittable());
     assert!(
-        m.contains("chart row 2 slips the stitch that chart row 1 slipped")
-            && m.contains("consecutive rows"),
+        m.contains("column 4 from the left") && m.contains("every row of the repeat"),
         "{m}"
     );
     for ok in [
         "Row 1 (RS): *Sl1 wyib, k1; rep from *.\nRow 2: Purl.",
         "Row 1 (RS): *K1, sl1 wyif; rep from *.\nRow 2: *P1, sl1 wyib; rep from *.",
+        "Row 1 (RS): K1, *sl1 wyib, k3; rep from * to last 2 sts, sl1 wyib, k1.\n\
+         Row 2: P1, *sl1 wyif, p3; rep from * to last 2 sts, sl1 wyif, p1.\n\
+         Row 3: Knit.\nRow 4: Purl.",
+        "Row 1 (RS): *K3, sl1 wyib; rep from *.\nRow 2: *Sl1 wyif, p3; rep from *.\n\
+         Row 3: *K3, sl1 wyib; rep from *.\nRow 4: Purl.",
     ] {
         ks(ok)
             .check_knittable()

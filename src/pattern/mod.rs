@@ -259,34 +259,29 @@ impl StitchPattern {
         p
     }
 
-    /// Refuses what the skeleton cannot knit as the pattern says, naming where: a loop
-    /// slipped in two consecutive rows (slip columns, mosaic knitting). A slipped stitch
-    /// carries the loop below it up over one row ([`Stitch::rise`] is 0 or 1); slipped again,
-    /// the loop would rise two, which is not built, and knitting on would make another
-    /// fabric with a stitch pulled through no loop. The pattern still reads and charts.
+    /// Refuses what the skeleton cannot knit as the pattern says, naming where: a column
+    /// whose loop is slipped in every row of the repeat. A slipped stitch carries the loop
+    /// below it up a row ([`Stitch::rise`]), and slipped again, another
+    /// (`skeleton::stitch_shape::carried_rise`: slip columns, mosaic knitting); slipped in
+    /// every row, the loop would rise for ever and never be knitted, and knitting on would
+    /// make another fabric. The pattern still reads and charts.
     pub fn check_knittable(&self) -> Result<()> {
         let (w, h) = (self.width(), self.height());
-        // The wrap (row 1 over the last row) last: a pair within the chart reads plainer.
-        for r in (1..h).chain(0..1) {
-            let below = (r + h - 1) % h;
-            for c in 0..w {
-                let cell = self.stitch(r, c);
-                if !matches!(cell.form, Form::Slip { .. }) {
-                    continue;
-                }
-                let src = (c as isize + isize::from(cell.source_offset)).rem_euclid(w as isize);
-                if matches!(self.stitch(below, src as usize).form, Form::Slip { .. }) {
-                    return Err(KnitError::Pattern(format!(
-                        "chart row {} slips the stitch that chart row {} slipped (column {} \
-                         from the left, rows counted from the bottom, as seen on the right \
-                         side): knitwear carries a slipped loop up over one row, not two, so it \
-                         does not knit a stitch slipped in consecutive rows yet (slip columns, \
-                         mosaic knitting)",
-                        r + 1,
-                        below + 1,
-                        c + 1
-                    )));
-                }
+        for c in 0..w {
+            // Follow the loop from the first row up through the stitches that slip it.
+            let (mut col, mut rises) = (c, 0);
+            while rises < h && self.stitch(rises, col).rise > 0 {
+                let offset = isize::from(self.stitch(rises, col).land_offset);
+                col = (col as isize + offset).rem_euclid(w as isize) as usize;
+                rises += 1;
+            }
+            if rises == h {
+                return Err(KnitError::Pattern(format!(
+                    "column {} from the left (as seen on the right side) slips its stitch in \
+                     every row of the repeat: its loop would be carried up for ever and never \
+                     knitted; work that stitch in at least one row",
+                    c + 1
+                )));
             }
         }
         Ok(())

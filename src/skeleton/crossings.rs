@@ -37,7 +37,7 @@
 use glam::{Vec2, Vec3};
 
 use super::edges::Edge;
-use super::stitch_shape::{group_on_fabric, knitted_form, landing};
+use super::stitch_shape::{carried_rise, group_on_fabric, knitted_form, landing};
 use super::{YarnPiece, KEY_POINTS};
 use crate::lattice::Lattice;
 use crate::pattern::{Face, Form, StitchPattern};
@@ -528,7 +528,8 @@ pub(super) fn intersect(
 }
 
 /// The stitch (course, wale) pulled through the loop of stitch (`course`, `wale`): in the
-/// column the loop lands in, one course up (two under a slipped stitch). `None` for a loop of
+/// column the loop lands in, one course up, and one more for each stitch slipped over it
+/// ([`carried_rise`]). `None` for a loop of
 /// the last course, which nothing holds.
 fn puller(
     lattice: &Lattice,
@@ -536,8 +537,7 @@ fn puller(
     course: usize,
     wale: usize,
 ) -> Option<(usize, usize)> {
-    let rise = usize::from(pattern.stitch(course, wale).rise > 0);
-    let c = course + 1 + rise;
+    let c = course + 1 + carried_rise(lattice, pattern, course, wale);
     if c >= lattice.courses {
         return None;
     }
@@ -669,8 +669,9 @@ fn edge_and_fabric(
     };
     match e.edge? {
         Edge::CastOn => {
-            // Under a slipped stitch the loop is carried up to the next course, which holds
-            // it; the slipped stitch's float passes it on the side the yarn was held.
+            // Under a slipped stitch the loop is carried up to the next course (and on, under
+            // each stitch slipped again), which holds it; each slipped stitch's float passes
+            // it on the side the yarn was held.
             let rise = super::edges::cast_on_rise(lattice, pattern, e.course, e.wale);
             let puller = (e.course + rise, e.wale);
             if f.course == puller.0 {
@@ -678,8 +679,8 @@ fn edge_and_fabric(
             }
             match cell(f.course, f.wale).form {
                 Form::Slip { yarn_front }
-                    if rise == 1
-                        && f.course == e.course
+                    if f.course < e.course + rise
+                        && f.course >= e.course
                         && f.part != Part::Sinker
                         && e.part != Part::Sinker =>
                 {
@@ -689,8 +690,8 @@ fn edge_and_fabric(
             }
         }
         Edge::BindOff => {
-            let rise = cell(f.course, f.wale).rise > 0 && f.course + 1 < lattice.courses;
-            if f.course + 1 + usize::from(rise) != e.course + 1 {
+            let rise = carried_rise(lattice, pattern, f.course, f.wale);
+            if f.course + 1 + rise != e.course + 1 {
                 return None;
             }
             let x = landing(lattice, pattern, f.course, f.wale).rem_euclid(wales as isize) as usize;

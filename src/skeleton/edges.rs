@@ -330,9 +330,10 @@ fn cast_on_stitch(
     // back out on the face side).
     let (drop, leg_drop) = (-CAST_ON_DROP * up, -CAST_ON_LEG_DROP * up);
     let leg_at = s.leg_bottom - CAST_ON_LEG_SLANT;
-    // The loop's top: at the foot of the stitch above, or a row higher under a slipped
+    // The loop's top: at the foot of the stitch above, or a row higher under each slipped
     // stitch, which carries it up to the next course.
-    let (top, top_across, top_up) = if rise == 1 {
+    let (top, top_across, top_up) = if rise > 0 {
+        let t = tile_at(lattice, course + rise - 1, wale as isize);
         (t.n0, t.n1 - t.n0, t.n4 - t.n0)
     } else {
         (t.n3, across, up)
@@ -359,16 +360,25 @@ fn cast_on_stitch(
     finish(points)
 }
 
-/// 1 where stitch (`course`, `wale`) is slipped and a course above it holds the cast-on loop
-/// under it instead, else 0.
+/// How many courses the cast-on loop under stitch (`course`, `wale`) is carried up by
+/// stitches slipped over it, as [`super::stitch_shape::carried_rise`] for a loop of the
+/// fabric: 0 where that stitch is worked, 1 under one slipped stitch, 2 where the next row
+/// slips it again; capped at the last course.
 pub(super) fn cast_on_rise(
     lattice: &Lattice,
     pattern: &StitchPattern,
     course: usize,
     wale: usize,
 ) -> usize {
-    let slipped = matches!(pattern.stitch(course, wale).form, Form::Slip { .. });
-    usize::from(slipped && course + 1 < lattice.courses)
+    let last = lattice.courses.saturating_sub(1);
+    let mut rise = 0;
+    while course + rise < last
+        && rise < pattern.height()
+        && matches!(pattern.stitch(course + rise, wale).form, Form::Slip { .. })
+    {
+        rise += 1;
+    }
+    rise
 }
 
 /// The bind-off loop over stitch (`course`, `wale`), worked as the pattern's next row there;

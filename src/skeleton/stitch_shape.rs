@@ -54,6 +54,33 @@ pub fn landing(lattice: &Lattice, pattern: &StitchPattern, course: usize, wale: 
     }
 }
 
+/// How many courses the loop of stitch (`course`, `wale`) is carried up by stitches slipped
+/// over it before a stitch is pulled through it: 0 for a loop worked in the next course, 1
+/// under one slipped stitch, 2 where the next row slips it again (a slip column, mosaic
+/// knitting): [`Stitch::rise`] of the loop, then of each slipped stitch, says whether the
+/// next row slips it (again). Capped at the last course, which carries a loop
+/// no further: the bind-off above it holds it. [`StitchPattern::check_knittable`] refuses a
+/// column slipped in every row of the repeat, whose loop would rise for ever.
+pub fn carried_rise(
+    lattice: &Lattice,
+    pattern: &StitchPattern,
+    course: usize,
+    wale: usize,
+) -> usize {
+    let last = lattice.courses.saturating_sub(1);
+    let (mut rise, mut at) = (0, wale);
+    // Each slipped stitch's own `rise` says whether the next row slips the loop again.
+    while pattern.stitch(course + rise, at).rise > 0 && course + rise < last {
+        at = landing(lattice, pattern, course + rise, at).rem_euclid(lattice.wales as isize)
+            as usize;
+        rise += 1;
+        if rise >= pattern.height() {
+            break;
+        }
+    }
+    rise
+}
+
 /// Whether the whole run of loops that the loop of stitch (course, wale) crosses or is
 /// gathered with is on the fabric (see [`landing`]): a run cut by an open-u edge, or by the
 /// seam of a cyclic u whose wales are not whole pattern repeats, is not. True for a loop that
@@ -176,8 +203,8 @@ pub fn stitch_key_points(
     };
     let unwrap = (wale - w) as isize;
     let dest = landing(lattice, pattern, course, w);
-    // A slipped stitch above carries this loop up one more row (where there is one).
-    let rise = usize::from(this.rise > 0 && course + 1 < lattice.courses);
+    // Slipped stitches above carry this loop up a row each (where there is one).
+    let rise = carried_rise(lattice, pattern, course, w);
     let above = pattern.stitch(course + 1 + rise, dest.rem_euclid(wales as isize) as usize);
     let own = tile_at(lattice, course, w as isize + unwrap);
     let top = tile_at(lattice, course + rise, dest + unwrap);
