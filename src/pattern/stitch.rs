@@ -25,7 +25,7 @@ pub enum Form {
     MakeOne,
     /// Slipped: this row's yarn does not form a loop here but floats past it, in front of the
     /// fabric (`yarn_front`, "wyif" on the right side) or behind it; the loop below is carried
-    /// up over two rows.
+    /// up a row (a row more for each row that slips it again).
     Slip { yarn_front: bool },
     /// A bobble: a knit stitch topped by a small knot of extra loops standing off the fabric.
     Bobble,
@@ -54,7 +54,9 @@ pub struct Stitch {
     /// behind, 0 when it crosses none. Among loops gathered by one decrease, the order of
     /// their layers is the order front to back.
     pub land_layer: i8,
-    /// Extra rows the loop's head rises because the stitch above slipped it (0 or 1).
+    /// 1 where the stitch above slips this loop (or, on a slipped stitch, where the next row
+    /// slips the loop it carries again), else 0. A loop's whole rise follows these flags up
+    /// the column (`skeleton::stitch_shape::carried_rise`).
     pub rise: u8,
 }
 
