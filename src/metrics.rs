@@ -9,9 +9,11 @@
 //! value is the exact minimum over a set of candidates fixed by the geometry alone, so the
 //! result is bit for bit the same for any number of threads.
 
+mod close_pair_cache;
 mod cover;
 mod holes;
 
+pub use close_pair_cache::ClosePairCache;
 pub use cover::{cover, cover_mask};
 pub use holes::{holes, Holes};
 
@@ -648,11 +650,11 @@ impl SegmentIndex {
         if a.yarn != b.yarn {
             return Relation::OtherYarn;
         }
-        let (a, b) = if a.index <= b.index { (a, b) } else { (b, a) };
-        let yarn = &self.yarns[a.yarn as usize];
-        if b.index - a.index <= 1 || (yarn.closed && a.index == 0 && b.index == yarn.segments - 1) {
+        if self.adjacent(i, j) {
             return Relation::Neighbour; // the same segment, or sharing an endpoint
         }
+        let (a, b) = if a.index <= b.index { (a, b) } else { (b, a) };
+        let yarn = &self.yarns[a.yarn as usize];
         let mut gap = b.start - a.end;
         if yarn.closed {
             gap = gap.min(yarn.length - b.end + a.start);
@@ -665,8 +667,19 @@ impl SegmentIndex {
     }
 
     /// Calls `found(j, s, t, distance)` for every segment `j` nearer segment `i` than
-    /// `radius` that [`clearance`] compares with it (each once, in cell order).
+    /// `radius` that [`clearance`] compares with it (each once, in ascending `j`).
     fn within(&self, i: usize, mut found: impl FnMut(usize, f32, f32, f32)) {
+        self.near(i, |j| {
+            if let Some((s, t, d)) = self.compare(i, j) {
+                found(j, s, t, d);
+            }
+        });
+    }
+
+    /// Calls `found(j)` for every segment `j` other than `i` and its two neighbours along the
+    /// yarn whose box comes nearer segment `i`'s than `radius`, each once, in ascending `j`:
+    /// every segment that could be nearer it than `radius`, whatever the yarns' arclengths.
+    fn near(&self, i: usize, mut found: impl FnMut(usize)) {
         let [a, b] = self.ends[i];
         let r = Vec3::splat(self.radius);
         let (lo, hi) = (a.min(b), a.max(b));
@@ -687,27 +700,50 @@ impl SegmentIndex {
             let j = j as usize;
             let [p, q] = self.ends[j];
             let gap = (p.min(q) - hi).max(lo - p.max(q)).max(Vec3::ZERO);
-            if gap.length_squared() >= r2 {
+            if gap.length_squared() >= r2 || self.adjacent(i, j) {
                 continue;
             }
-            let same_yarn = match self.relation(i, j) {
-                Relation::Neighbour => continue,
-                Relation::OtherYarn => false,
-                Relation::SameYarn => true,
-            };
-            let (s, t) = closest_parameters(a, b, p, q);
-            let w = (a - p) + (b - a) * s - (q - p) * t;
-            let d2 = w.length_squared();
-            if d2 >= r2 {
-                continue;
-            }
-            if same_yarn
-                && !(critical(w, s, b - a, self.turns[i]) && critical(-w, t, q - p, self.turns[j]))
-            {
-                continue;
-            }
-            found(j, s, t, d2.sqrt());
+            found(j);
         }
+    }
+
+    /// Whether `i` and `j` are one segment or share an end point along a yarn: neighbours
+    /// whatever the yarn's shape.
+    #[inline]
+    fn adjacent(&self, i: usize, j: usize) -> bool {
+        let (a, b) = (&self.info[i], &self.info[j]);
+        if a.yarn != b.yarn {
+            return false;
+        }
+        let (a, b) = if a.index <= b.index { (a, b) } else { (b, a) };
+        let yarn = &self.yarns[a.yarn as usize];
+        b.index - a.index <= 1 || (yarn.closed && a.index == 0 && b.index == yarn.segments - 1)
+    }
+
+    /// `(s, t, distance)` of segments `i` and `j` where [`clearance`] compares them and they
+    /// are nearer than `radius`: other yarns, or the same yarn beyond the exclusion and
+    /// doubly critical. The one test every search here applies, so they all agree bit for bit.
+    #[inline]
+    fn compare(&self, i: usize, j: usize) -> Option<(f32, f32, f32)> {
+        let same_yarn = match self.relation(i, j) {
+            Relation::Neighbour => return None,
+            Relation::OtherYarn => false,
+            Relation::SameYarn => true,
+        };
+        let [a, b] = self.ends[i];
+        let [p, q] = self.ends[j];
+        let (s, t) = closest_parameters(a, b, p, q);
+        let w = (a - p) + (b - a) * s - (q - p) * t;
+        let d2 = w.length_squared();
+        if d2 >= self.radius * self.radius {
+            return None;
+        }
+        if same_yarn
+            && !(critical(w, s, b - a, self.turns[i]) && critical(-w, t, q - p, self.turns[j]))
+        {
+            return None;
+        }
+        Some((s, t, d2.sqrt()))
     }
 
     /// Distance from segment `i` to the nearest segment that is not its neighbour, or

@@ -32,7 +32,9 @@ use super::relief::NO_CELL;
 pub use super::relief::{ContactRelief, EdgeRelief};
 use super::{sample_piece, yarn_pieces, NormalOffsets, SplineSampling, KEY_POINTS};
 use crate::lattice::Lattice;
-use crate::metrics::{clearance, close_pairs, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS};
+use crate::metrics::{
+    clearance, ClosePairCache, YarnPolyline, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS,
+};
 use crate::pattern::StitchPattern;
 use crate::surface::{PlaneSurface, Surface};
 
@@ -66,6 +68,10 @@ const EDGE_WALES: usize = 3;
 const MARGIN_COURSES: usize = 2;
 /// Samples per loop of the patch's centrelines.
 const SAMPLES: usize = 24;
+/// How far beyond [`TARGET`] the relief's rounds keep track of pairs of yarn segments, in
+/// diameters ([`ClosePairCache`]): a segment that moves half this far is searched round
+/// afresh.
+const PAIR_MARGIN: f32 = 0.5;
 
 /// A flat patch of the pattern with unit yarn diameter, stitches `width x height`.
 struct Patch {
@@ -398,6 +404,9 @@ fn relax(
     // (crosses right, clearance): crossing right first.
     let better = |a: (f32, bool), b: (f32, bool)| (a.1, a.0) > (b.1, b.0);
     let mut best: ((f32, bool), Option<Vec<[f32; KEY_POINTS]>>) = (start_state, None);
+    // The rounds move the yarns a little each: their close pairs are tracked, not searched
+    // for afresh (the same pairs, bit for bit).
+    let mut near = ClosePairCache::new(PAIR_MARGIN);
     for _ in 0..ROUNDS {
         if crate::cancel::requested() {
             break;
@@ -405,7 +414,8 @@ fn relax(
         let current = offsets_with(&cells);
         let lines = patch.centrelines(pattern, &current, sampling);
         let yarns = polylines(&lines);
-        let Some(pairs) = close_pairs(&yarns, 1.0, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS, TARGET)
+        let Some(pairs) =
+            near.close_pairs(&yarns, 1.0, DEFAULT_NEIGHBOUR_ARCLENGTH_DIAMETERS, TARGET)
         else {
             break;
         };
