@@ -1,5 +1,6 @@
 //! Interlock, clearance and cover of every preset on a flat sheet at the default gauge.
 //! `cargo run --release --example interlock_survey [radius_per_stitch_width|default] [preset...]`
+//! (a name ending `.ks` is read as a Knitspeak file).
 //! (`default`: the yarn a knit gets when none is given, as the tests knit).
 use glam::{Vec2, Vec3};
 use knitwear::knit::{KnitParams, PreparedKnit};
@@ -27,7 +28,12 @@ fn main() {
         height: 0.1,
     };
     for name in names {
-        let pattern = StitchPattern::preset(&name).unwrap();
+        let pattern = if name.ends_with(".ks") {
+            let text = std::fs::read_to_string(&name).expect("a readable Knitspeak file");
+            StitchPattern::from_text(&text).unwrap()
+        } else {
+            StitchPattern::preset(&name).unwrap()
+        };
         let t = std::time::Instant::now();
         let p = KnitParams {
             yarn_radius: ratio.map(|r| r * 0.005),

@@ -526,3 +526,31 @@ fn in_the_round_the_gauge_gives_whole_repeats() {
     let flat = PreparedKnit::new(&plane, &c6, &KnitParams::default()).unwrap();
     assert_eq!(flat.stats().wales, 38);
 }
+
+/// A repeat larger than the tuning's plain stand-in takes over
+/// (`knitwear::skeleton::tuning::MAX_TUNED_CELLS`) whose loops lean is tuned whole: a 4/4
+/// cable in a 12 x 24 repeat tuned on a plain window (every loop straight) knitted 8 of its
+/// 2,815 interlock crossings the wrong way round, at 0.006 diameters of clearance.
+#[test]
+fn a_cable_in_a_repeat_beyond_the_plain_stand_in_is_tuned_whole_and_interlocks() {
+    use knitwear::skeleton::tuning::MAX_TUNED_CELLS;
+    let pattern = StitchPattern::from_knitspeak(
+        "Rows 1, 3, 5, 7, 9, 11, 15, 17, 19, 21, and 23 (RS): P2, k8, p2.\n\
+         Rows 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, and 24: K2, p8, k2.\n\
+         Row 13: P2, 4/4 RC, p2.",
+    )
+    .unwrap();
+    assert!(pattern.width() * pattern.height() > MAX_TUNED_CELLS);
+    assert!(!pattern.is_plain_loops());
+    let plane = PlaneSurface {
+        width: 0.12,
+        height: 0.1,
+    };
+    let (clearance, order) = measured(&plane, &pattern);
+    println!("clearance {clearance:.3}, {order:?}");
+    assert_eq!(order.agree, order.decided, "{:?}", order.first_disagreement);
+    assert_eq!(order.interlock_agree, order.interlock_decided);
+    assert!(order.interlock_decided > 2000);
+    assert_eq!(order.free_loops, 0);
+    assert!(clearance >= 0.25, "{clearance}");
+}

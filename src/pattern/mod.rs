@@ -287,6 +287,19 @@ impl StitchPattern {
         Ok(())
     }
 
+    /// Whether every stitch is a knit or purl loop pulled through the loop straight below,
+    /// its own loop landing straight above: nothing leans, gathers, slips, twists, makes a
+    /// new loop or a bobble. Such a chart knits exactly as its
+    /// [`plain_window`](Self::plain_window)s do, cell for cell.
+    pub fn is_plain_loops(&self) -> bool {
+        self.cells.iter().all(|c| {
+            *c == Stitch {
+                face: c.face,
+                ..Stitch::KNIT
+            }
+        })
+    }
+
     /// Whether any loop crosses or is gathered with another (a cable, a decrease).
     pub fn has_crossings(&self) -> bool {
         self.cells
