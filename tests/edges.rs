@@ -272,3 +272,43 @@ fn a_bind_off_holds_every_loop_on_any_row_of_a_cable() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+/// A 4/4 cable's crossing row is three rows tall over its node columns, with regular rows
+/// beside it. Bound off on that row, the chain loop over the cable's last tall column stood
+/// three rows tall and the next one a row: the tall loop's head, brought down to its short
+/// neighbour's height, passed above that neighbour's leg top, and nothing held the tall loop
+/// (2 free loops of 719 on a 24-wale sheet of 28 courses, and of 1,103 at 44). The next loop's
+/// left leg now stands as tall as the loop before it.
+#[test]
+fn a_bind_off_over_a_wide_cables_tall_row_holds_every_loop() {
+    let pattern = StitchPattern::from_knitspeak(
+        "Rows 1, 3, 5, 7, 9, 11, and 15 (RS): P2, k8, p2.\n\
+         Rows 2, 4, 6, 8, 10, 12, 14, and 16: K2, p8, k2.\n\
+         Row 13: P2, 4/4 RC, p2.",
+    )
+    .unwrap();
+    let mut failures = Vec::new();
+    // Both end on row 12, the (wrong-side) row under the cable row: its loops lean.
+    for courses in [28, 44] {
+        let sheet = PlaneSurface {
+            width: 24.0 * 0.005,
+            height: courses as f32 * 0.1 / 28.0,
+        };
+        let p = KnitParams {
+            threads: Some(2),
+            courses: Some(courses),
+            wales: Some(24),
+            ..KnitParams::default()
+        };
+        let knit = PreparedKnit::new(&sheet, &pattern, &p).unwrap();
+        let order = knit.crossing_order(&sheet).unwrap();
+        println!(
+            "{courses} courses: free loops {}/{}, crossings {}/{}",
+            order.free_loops, order.loops, order.agree, order.decided
+        );
+        if (order.free_loops, order.free_feet) != (0, 0) || order.agree != order.decided {
+            failures.push(format!("{courses} courses: {order:?}"));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}

@@ -394,13 +394,22 @@ fn bind_off_stitch(
     let (offsets, l, leg) = bind_off_legs(lattice, pattern, offsets, course, wale);
     let s = offsets.loop_shape;
     let t = tile_at(lattice, course, wale as isize);
-    let (across, up) = (t.n1 - t.n0, bind_off_up(&t));
+    // The left leg stands as tall as the loop before it needs to lie its head across it;
+    // the right leg top only as tall as this loop's own foot needs (see [`bind_off_up`]).
+    let (across, up, own_up) = (
+        t.n1 - t.n0,
+        bind_off_up(lattice, course, wale as isize),
+        own_bind_off_up(&t),
+    );
     let at =
         |(across_at, up_at): (f32, f32)| t.n0 + across_at * across + (s.head_reach + up_at) * up;
+    let at_own = |(across_at, up_at): (f32, f32)| {
+        t.n0 + across_at * across + (s.head_reach + up_at) * own_up
+    };
     let (head, head_lambda, right_top, right_lambda) = if last {
         // Fastened off: a small upright loop.
         let (x, y) = BIND_OFF_LEG_TOP;
-        (at((0.5, y + 0.08)), leg, at((1.0 - x, y)), leg)
+        (at((0.5, y + 0.08)), leg, at_own((1.0 - x, y)), leg)
     } else {
         // The head passes the next loop's left leg where it crosses, two thirds of the way
         // up from its foot, a diameter and more on the chain's side.
@@ -416,12 +425,14 @@ fn bind_off_stitch(
         // column, so the next tile's top need not continue this one's.
         let n = tile_at(lattice, course, wale as isize + 1);
         let (x, y) = BIND_OFF_HEAD;
-        let head_at = n.n0 + (x - 1.0) * (n.n1 - n.n0) + (s.head_reach + y) * bind_off_up(&n);
+        let head_at = n.n0
+            + (x - 1.0) * (n.n1 - n.n0)
+            + (s.head_reach + y) * bind_off_up(lattice, course, wale as isize + 1);
         // The yarn comes back from the head across the next loop's leg a second time, on
         // the same side: the right leg top stays no further towards that leg than the head
         // and half a diameter.
         let right = side * (side * 0.5 * leg).min(side * head + 0.5 * offsets.diameter);
-        (head_at, head, at(BIND_OFF_RIGHT_LEG_TOP), right)
+        (head_at, head, at_own(BIND_OFF_RIGHT_LEG_TOP), right)
     };
     let points: [(Vec2, f32); KEY_POINTS] = [
         (
@@ -441,21 +452,43 @@ fn bind_off_stitch(
 /// A row's height over the last course's tile `t`, for the bind-off loop worked on it: the
 /// tile's left side, stretched to the length of the taller of its two sides. Under a cable
 /// row the tuned row heights make the last course short at some node columns and tall at
-/// others ([`crate::lattice::RowHeights`]); the bind-off row is worked plain, and a loop measured by its left side only stood half as
-/// tall as its neighbour, whose head, lying over to it, then passed above the short loop's
-/// leg instead of across it, and nothing held it (a 3/3 cable bound off on the row under its
-/// crossing row). The mean of the sides held it but lowered other loops onto the heads
-/// below (a 2/2 cable's clearance fell from 0.58 to 0.23). On a regular tile both sides are
-/// equal and the left one is taken unchanged, as before.
-fn bind_off_up(t: &Tile) -> Vec2 {
-    let (left, right) = (t.n0 - t.n3, t.n1 - t.n2);
-    let (left_len, right_len) = (left.length(), right.length());
-    // The left side's direction at the taller side's length: a length that tips from one
-    // side to the other moves the loop continuously (taking the right side's vector
-    // outright jumped it sideways where two nearly equal sides swapped under round-off, as
-    // a sheared parent's transform does).
-    if right_len > left_len && left_len > 0.0 {
-        left * (right_len / left_len)
+/// others ([`crate::lattice::RowHeights`]); the bind-off row is worked plain, and a loop
+/// measured by its left side only stood half as tall as its neighbour, whose head, lying
+/// over to it, then passed above the short loop's leg instead of across it, and nothing held
+/// it (a 3/3 cable bound off on the row under its crossing row). The mean of the sides held
+/// it but lowered other loops onto the heads below (a 2/2 cable's clearance fell from 0.58
+/// to 0.23). On a regular tile both sides are equal and the left one is taken unchanged.
+/// The loop's foot needs this much: its right leg top stands at it.
+fn own_bind_off_up(t: &Tile) -> Vec2 {
+    stretched_side(t, (t.n1 - t.n2).length())
+}
+
+/// The height the bind-off loop over (`course`, `wale`) stands at where the loop before it
+/// lies its head across its left leg: [`own_bind_off_up`], stretched further to the left
+/// side of the tile before. The loop before stands as tall as its own tile's sides, and
+/// where that is taller than this one's (a 4/4 cable's crossing row is three rows tall over
+/// its node columns, a regular one beside it), its head, placed at this loop's height, came
+/// down steeply from its tall legs and passed above this loop's leg top: the loop before
+/// was held by nothing (a 4/4 cable in 16 rows bound off on its tall row, 2 of 719 loops).
+fn bind_off_up(lattice: &Lattice, course: usize, wale: isize) -> Vec2 {
+    let t = tile_at(lattice, course, wale);
+    let mut tallest = (t.n1 - t.n2).length();
+    if wale > 0 || lattice.cyclic_u {
+        let before = tile_at(lattice, course, wale - 1);
+        tallest = tallest.max((before.n0 - before.n3).length());
+    }
+    stretched_side(&t, tallest)
+}
+
+/// The left side of `t` stretched to `length` where that is longer: the left side's
+/// direction keeps a length that tips from one side to the other moving the loop
+/// continuously (taking the right side's vector outright jumped it sideways where two
+/// nearly equal sides swapped under round-off, as a sheared parent's transform does).
+fn stretched_side(t: &Tile, length: f32) -> Vec2 {
+    let left = t.n0 - t.n3;
+    let left_len = left.length();
+    if length > left_len && left_len > 0.0 {
+        left * (length / left_len)
     } else {
         left
     }
