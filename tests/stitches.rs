@@ -25,16 +25,18 @@ fn rows(spec: &[(bool, Vec<I>)]) -> StitchPattern {
     StitchPattern::from_written_rows("test", &rows).unwrap()
 }
 
-/// Key points of stitch (course, wale) of `pattern` on a regular 8 x 8 lattice of unit tiles.
+/// Key points of stitch (course, wale) of `pattern` on a regular lattice of unit tiles, 8
+/// courses by 8 wales or the pattern's width if wider.
 fn key_points_of(pattern: &StitchPattern, course: usize, wale: usize) -> [Vec3; 6] {
     use knitwear::lattice::Lattice;
     use knitwear::skeleton::{stitch_key_points, NormalOffsets};
     use knitwear::surface::UvRect;
+    let wales = pattern.width().max(8);
     let domain = UvRect {
         min: glam::Vec2::ZERO,
-        max: glam::Vec2::new(8.0, 8.0 + 2.0 * knitwear::lattice::ROW_OVERHANG),
+        max: glam::Vec2::new(wales as f32, 8.0 + 2.0 * knitwear::lattice::ROW_OVERHANG),
     };
-    let lattice = Lattice::regular(domain, 8, 8, false, false);
+    let lattice = Lattice::regular(domain, 8, wales, false, false);
     let offsets = NormalOffsets::uniform(0.1);
     stitch_key_points(&lattice, pattern, &offsets, course, wale)
 }
@@ -542,15 +544,70 @@ fn a_cable_in_a_repeat_beyond_the_plain_stand_in_is_tuned_whole_and_interlocks()
     .unwrap();
     assert!(pattern.width() * pattern.height() > MAX_TUNED_CELLS);
     assert!(!pattern.is_plain_loops());
+    let (clearance, order) = knitted_as_written_on_a_sheet(&pattern);
+    assert_eq!(order.free_loops, 0);
+    assert!(clearance >= 0.25, "{clearance}");
+}
+
+/// `pattern` knitted on a 12 x 10 cm sheet at default settings, with every crossing the
+/// right way round and more than 2,000 interlock crossings; its clearance and crossings.
+fn knitted_as_written_on_a_sheet(pattern: &StitchPattern) -> (f32, CrossingOrder) {
     let plane = PlaneSurface {
         width: 0.12,
         height: 0.1,
     };
-    let (clearance, order) = measured(&plane, &pattern);
+    let (clearance, order) = measured(&plane, pattern);
     println!("clearance {clearance:.3}, {order:?}");
     assert_eq!(order.agree, order.decided, "{:?}", order.first_disagreement);
     assert_eq!(order.interlock_agree, order.interlock_decided);
     assert!(order.interlock_decided > 2000);
-    assert_eq!(order.free_loops, 0);
-    assert!(clearance >= 0.25, "{clearance}");
+    (clearance, order)
+}
+
+/// A cross around a centre (`1/1/1 LPC`, `2/1/2 RPC`): the front group lands across the
+/// centre and passes in front of everything, the other side group passes behind it but in
+/// front of the centre, which stays in its columns behind both, purled. Knitted, every course
+/// interlocks and every loop crosses as the pattern says.
+#[test]
+fn a_centre_cross_passes_its_groups_in_front_of_the_centre_and_interlocks() {
+    let pattern = StitchPattern::from_knitspeak(
+        "Row 1 (RS): *P2, 1/1/1 LPC, p2, 2/1/2 RPC; rep from *.\n\
+         Rows 2 and 4 (WS): *P2, k1, p2, k2, p1, k1, p1, k2; rep from *.\n\
+         Row 3: *P2, k1, p1, k1, p2, k2, p1, k2; rep from *.",
+    )
+    .unwrap();
+    // Right-side columns, left to right: the 2/1/2 RPC over 0..=4, p2, the 1/1/1 LPC over
+    // 7..=9, p2. Course 3 (row 4) holds the loops row 1 of the next repeat crosses.
+    let lands = |wale: usize| {
+        let s = pattern.stitch(3, wale);
+        (s.land_offset, s.land_layer)
+    };
+    // 2/1/2 RPC: loops 0 and 1 travel right in front, 3 and 4 left behind them, the centre
+    // stays, behind both; 1/1/1 LPC: loop 9 travels left in front, 7 right behind it.
+    for (wale, want) in [
+        (0, (3, 2)),
+        (1, (3, 2)),
+        (2, (0, -1)),
+        (3, (-3, 1)),
+        (4, (-3, 1)),
+        (9, (-2, 2)),
+        (8, (0, -1)),
+        (7, (2, 1)),
+    ] {
+        assert_eq!(lands(wale), want, "wale {wale}");
+    }
+    for wale in [2, 8] {
+        assert_eq!(pattern.stitch(0, wale).face, knitwear::pattern::Face::Purl);
+    }
+    // The shape: the front group's leg tops stand in front of the back group's, and those in
+    // front of the centre's.
+    for (front, middle, centre) in [(0, 3, 2), (9, 7, 8)] {
+        let f = key_points_of(&pattern, 3, front);
+        let m = key_points_of(&pattern, 3, middle);
+        let c = key_points_of(&pattern, 3, centre);
+        assert!(f[2].z > m[2].z && m[2].z > c[2].z, "{f:?} {m:?} {c:?}");
+    }
+    let (clearance, order) = knitted_as_written_on_a_sheet(&pattern);
+    assert_eq!((order.free_loops, order.free_feet), (0, 0));
+    assert!(clearance >= CLEARANCE_FLOOR, "{clearance}");
 }

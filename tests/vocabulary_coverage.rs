@@ -78,6 +78,13 @@ fn stitch_maps_names_read_as_their_stitches() {
         left,
         purl_back,
     };
+    let centre = |m, c, n, left, purl_centre| I::CentreCross {
+        m,
+        c,
+        n,
+        left,
+        purl_centre,
+    };
     for (name, ins) in [
         ("k", I::Knit),
         ("p", I::Purl),
@@ -99,10 +106,16 @@ fn stitch_maps_names_read_as_their_stitches() {
         ("2/2-lpc", cross(2, 2, true, true)),
         ("2/1-rpc", cross(2, 1, false, true)),
         ("1/1-lt", cross(1, 1, true, false)),
+        ("1/1/1-lpc", centre(1, 1, 1, true, true)),
+        ("2/1/2-rpc", centre(2, 1, 2, false, true)),
+        ("1/2/1-rc", centre(1, 2, 1, false, false)),
+        ("3/1/3-lc", centre(3, 1, 3, true, false)),
+        ("1/1/1-rpt", centre(1, 1, 1, false, true)),
     ] {
         assert_eq!(read(name), Some(ins), "{name}");
     }
-    for name in ["kfb", "bo", "turn", "w&t", "brsl", "drop-st"] {
+    // `RCC` / `LCC`, centre crosses whose working knitwear does not know, are not read.
+    for name in ["kfb", "bo", "turn", "w&t", "brsl", "drop-st", "1/2/1-rcc"] {
         assert_eq!(read(name), None, "{name}");
     }
 }

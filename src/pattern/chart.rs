@@ -138,7 +138,9 @@ fn from_wrong_side(ws: Instruction) -> Option<Charted> {
             },
             !purl_back,
         ),
-        I::Sk2p | I::Cdd | I::Cddp => return None,
+        // Seen from the right side, a centre cross worked from the wrong side has its centre
+        // in front of both groups: no right-side stitch does that.
+        I::Sk2p | I::Cdd | I::Cddp | I::CentreCross { .. } => return None,
     })
 }
 
@@ -434,6 +436,23 @@ fn candidates() -> Vec<Charted> {
             }
         }
     }
+    for m in 1..MAX_CROSS_SIDE {
+        for c in 1..=MAX_CROSS_SIDE - m {
+            for n in 1..=MAX_CROSS_SIDE - c {
+                for left in [false, true] {
+                    for purl_centre in [false, true] {
+                        all.push(I::CentreCross {
+                            m,
+                            c,
+                            n,
+                            left,
+                            purl_centre,
+                        });
+                    }
+                }
+            }
+        }
+    }
     let mut all: Vec<Charted> = all.into_iter().map(|i| (i, false)).collect();
     for i in [
         I::Slip { yarn_front: false },
@@ -661,6 +680,60 @@ mod tests {
                         assert_eq!(back.cells, p.cells, "{}:\n{chart}", ws.name());
                     }
                 }
+            }
+        }
+    }
+
+    /// A centre cross charts as one run of its symbol, with its legend line, and reads back;
+    /// worked from the wrong side it has no right-side symbol and is drawn as its faces.
+    #[test]
+    fn centre_crosses_chart_and_read_back() {
+        for (ins, ws_drawn) in [
+            (
+                Instruction::CentreCross {
+                    m: 1,
+                    c: 1,
+                    n: 1,
+                    left: true,
+                    purl_centre: true,
+                },
+                false,
+            ),
+            (
+                Instruction::CentreCross {
+                    m: 2,
+                    c: 2,
+                    n: 1,
+                    left: false,
+                    purl_centre: false,
+                },
+                true,
+            ),
+        ] {
+            let w = ins.stitches_in() + 2;
+            let mut cross_row = vec![Instruction::Purl, Instruction::Purl];
+            cross_row.insert(1, ins);
+            let rows = [
+                WrittenRow {
+                    number: 1,
+                    right_side: !ws_drawn,
+                    instructions: cross_row,
+                },
+                WrittenRow {
+                    number: 2,
+                    right_side: ws_drawn,
+                    instructions: vec![Instruction::Knit; w],
+                },
+            ];
+            let p = StitchPattern::from_rows("centre", cells_from_rows(&rows).unwrap()).unwrap();
+            let chart = write_chart(&p);
+            if ws_drawn {
+                assert!(chart.contains("# rows [1]"), "{chart}");
+            } else {
+                assert!(!chart.contains("# rows"), "{chart}");
+                assert!(chart.contains(&format!("= {}\n", ins.name())), "{chart}");
+                let back = parse_chart(&chart).unwrap();
+                assert_eq!(back.cells, p.cells, "{chart}");
             }
         }
     }

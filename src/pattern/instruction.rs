@@ -78,6 +78,20 @@ pub enum Instruction {
         left: bool,
         purl_back: bool,
     },
+    /// A cross around a centre, `m/c/n RC`, `m/c/n LC`, `m/c/n RPC`, `m/c/n LPC` (`1/1/1 RT`
+    /// is `1/1/1 RC`): the `m` stitches travel in front of the `c` centre stitches and the `n`
+    /// stitches, to the right (`left == false`) or to the left; the `n` stitches travel the
+    /// other way behind the `m` but in front of the centre, which is held on its own cable
+    /// needle in back and worked in between. `purl_centre`: the centre stitches are purled (the
+    /// `P` of `RPC`). Each of `m + c` and `c + n` is at most [`MAX_CROSS_SIDE`], so no loop
+    /// travels further than in a plain cross.
+    CentreCross {
+        m: u8,
+        c: u8,
+        n: u8,
+        left: bool,
+        purl_centre: bool,
+    },
 }
 
 /// A stitch made by an instruction, in right-side order within the instruction.
@@ -129,6 +143,7 @@ impl Instruction {
             Self::K4tog | Self::P4tog => 4,
             Self::K5tog | Self::P5tog => 5,
             Self::Cross { m, n, .. } => usize::from(m) + usize::from(n),
+            Self::CentreCross { m, c, n, .. } => usize::from(m) + usize::from(c) + usize::from(n),
             _ => 1,
         }
     }
@@ -137,6 +152,7 @@ impl Instruction {
     pub fn stitches_out(self) -> usize {
         match self {
             Self::Cross { m, n, .. } => usize::from(m) + usize::from(n),
+            Self::CentreCross { m, c, n, .. } => usize::from(m) + usize::from(c) + usize::from(n),
             _ => 1,
         }
     }
@@ -182,6 +198,17 @@ impl Instruction {
                 "{m}/{n} {}{}C",
                 if left { "L" } else { "R" },
                 if purl_back { "P" } else { "" }
+            ),
+            Self::CentreCross {
+                m,
+                c,
+                n,
+                left,
+                purl_centre,
+            } => format!(
+                "{m}/{c}/{n} {}{}C",
+                if left { "L" } else { "R" },
+                if purl_centre { "P" } else { "" }
             ),
         }
     }
@@ -261,18 +288,63 @@ impl Instruction {
                 n,
                 left,
                 purl_back,
-            } => cross(usize::from(m), usize::from(n), left, purl_back),
+            } => cross(
+                Groups {
+                    front: usize::from(m),
+                    centre: 0,
+                    back: usize::from(n),
+                },
+                left,
+                purl_back,
+            ),
+            Self::CentreCross {
+                m,
+                c,
+                n,
+                left,
+                purl_centre,
+            } => cross(
+                Groups {
+                    front: usize::from(m),
+                    centre: usize::from(c),
+                    back: usize::from(n),
+                },
+                left,
+                purl_centre,
+            ),
         }
     }
+}
+
+/// The stitch groups of a cross, in the order a knitter names them: `front` travels in front
+/// of the others, `back` the other way behind it, `centre` (0 in a plain cross) between them.
+struct Groups {
+    front: usize,
+    centre: usize,
+    back: usize,
 }
 
 /// `m/n RC` (`left == false`): slip `n` to a cable needle held in back, knit `m`, then the `n`
 /// from the cable needle; the `m` loops travel right, in front. `m/n LC`: slip `m` held in
 /// front, work `n`, knit the `m`; the `m` loops travel left, in front. The row is worked right
 /// to left, so the loops worked first land furthest right.
-fn cross(m: usize, n: usize, left: bool, purl_back: bool) -> Worked {
-    let back_face = if purl_back { Face::Purl } else { Face::Knit };
-    let total = m + n;
+///
+/// With a centre (`m/c/n RC`): slip `n` to a first cable needle and `c` to a second, both held
+/// in back, knit `m`, work the `c`, knit the `n`; `m/c/n LC`: slip `m` held in front and `c`
+/// held in back, knit `n`, work the `c`, knit the `m`. The centre loops stay between the
+/// groups and pass behind both, the `n` loops pass behind the `m` in front of the centre: the
+/// layers are +2 (front), +1 (back group) and -1 (centre), so every two groups that cross have
+/// distinct layers, the higher in front. Without a centre they are +1 and -1.
+///
+/// `purl`: the stitches held furthest back (the back group of a plain cross, the centre of a
+/// centre cross) are purled.
+fn cross(g: Groups, left: bool, purl: bool) -> Worked {
+    let Groups {
+        front: m,
+        centre: c,
+        back: n,
+    } = g;
+    let total = m + c + n;
     let mut made = vec![
         MadeStitch {
             face: Face::Knit,
@@ -289,29 +361,40 @@ fn cross(m: usize, n: usize, left: bool, purl_back: bool) -> Worked {
         };
         total
     ];
-    let mut link = |from: usize, to: usize, front: bool| {
+    let (front, back, centre) = if c == 0 { (1, -1, 0) } else { (2, 1, -1) };
+    let purled = if c == 0 { back } else { centre };
+    let mut link = |from: usize, to: usize, layer: i8| {
         made[to].first_source = from;
-        made[to].face = if front { Face::Knit } else { back_face };
-        loops[from] = LoopFate {
-            made_by: to,
-            layer: if front { 1 } else { -1 },
+        made[to].face = if purl && layer == purled {
+            Face::Purl
+        } else {
+            Face::Knit
         };
+        loops[from] = LoopFate { made_by: to, layer };
     };
     if left {
-        // Loops n..n+m (front) land at 0..m; loops 0..n (back) at m..m+n.
+        // Loops n+c..n+c+m (front) land at 0..m; the centre n..n+c lands at m..m+c; loops
+        // 0..n (back) land at m+c..m+c+n.
         for i in 0..m {
-            link(n + i, i, true);
+            link(n + c + i, i, front);
+        }
+        for k in 0..c {
+            link(n + k, m + k, centre);
         }
         for j in 0..n {
-            link(j, m + j, false);
+            link(j, m + c + j, back);
         }
     } else {
-        // Loops 0..m (front) land at n..n+m; loops m..m+n (back) at 0..n.
+        // Loops 0..m (front) land at n+c..n+c+m; the centre m..m+c at n..n+c; loops
+        // m+c..m+c+n (back) at 0..n.
         for i in 0..m {
-            link(i, n + i, true);
+            link(i, n + c + i, front);
+        }
+        for k in 0..c {
+            link(m + k, n + k, centre);
         }
         for j in 0..n {
-            link(m + j, j, false);
+            link(m + c + j, j, back);
         }
     }
     Worked { made, loops }

@@ -83,7 +83,9 @@ pub(crate) enum Reads {
         ignored: &'static [&'static str],
     },
     /// `m/n KIND` (spaces removed, any case), `m` and `n` from 1 to [`MAX_CROSS_SIDE`]: `m`
-    /// stitches cross over `n`.
+    /// stitches cross over `n`; or `m/c/n KIND`, `m` stitches crossing over `n` around `c`
+    /// centre stitches, with `m + c` and `c + n` at most [`MAX_CROSS_SIDE`]
+    /// ([`Instruction::CentreCross`]; the `P` of the kind purls the centre).
     Cross(&'static [CrossKind]),
     /// `CnB` / `CnF` (spaces removed): a cable of `n/2` over `n/2` stitches, `n` even, at most
     /// `2 * MAX_CROSS_SIDE`; `B` (held in back) crosses to the right, `F` (in front) to the
@@ -128,6 +130,16 @@ const fn cross(m: u8, n: u8, left: bool, purl_back: bool) -> Instruction {
         n,
         left,
         purl_back,
+    }
+}
+
+const fn centre_cross(m: u8, c: u8, n: u8, left: bool, purl_centre: bool) -> Instruction {
+    Instruction::CentreCross {
+        m,
+        c,
+        n,
+        left,
+        purl_centre,
     }
 }
 
@@ -434,18 +446,27 @@ impl Reads {
                 Some((stitched, count))
             }
             Self::Cross(kinds) => {
-                let (m, rest) = squeezed.split_once('/')?;
-                let digits = rest.chars().take_while(char::is_ascii_digit).count();
-                let (n, written) = rest.split_at(digits);
-                let (m, n): (u8, u8) = (m.parse().ok()?, n.parse().ok()?);
+                let digits = squeezed
+                    .chars()
+                    .take_while(|c| c.is_ascii_digit() || *c == '/')
+                    .count();
+                let (sizes, written) = squeezed.split_at(digits);
                 let k = kinds
                     .iter()
                     .find(|k| k.name.eq_ignore_ascii_case(written))?;
-                let ok = |x: u8| (1..=MAX_CROSS_SIDE).contains(&x);
-                if !(ok(m) && ok(n)) {
-                    return None;
+                let sizes: Vec<u8> = sizes
+                    .split('/')
+                    .map(|s| s.parse().ok().filter(|&x| x >= 1))
+                    .collect::<Option<_>>()?;
+                let side = |x: u8| x <= MAX_CROSS_SIDE;
+                match sizes[..] {
+                    [m, n] if side(m) && side(n) => once(cross(m, n, k.left, k.purl_back)),
+                    // No loop of a centre cross travels further than one of a plain cross.
+                    [m, c, n] if side(m.saturating_add(c)) && side(c.saturating_add(n)) => {
+                        once(centre_cross(m, c, n, k.left, k.purl_back))
+                    }
+                    _ => None,
                 }
-                once(cross(m, n, k.left, k.purl_back))
             }
             Self::CableAlias => {
                 let (n, left) = alias(squeezed, 'c')?;
@@ -528,14 +549,19 @@ pub(crate) fn suggest(token: &str) -> String {
         .flat_map(|e| e.offered)
         .map(|s| s.to_string())
         .collect();
-    if let Some((m, rest)) = lower.split_once('/') {
-        let n: String = rest.chars().take_while(char::is_ascii_digit).collect();
+    // A cross-like token (`2/2 RX`, `1/1/1 LPX`) is offered every kind at its own sizes.
+    let sizes: String = lower
+        .chars()
+        .take_while(|c| c.is_ascii_digit() || matches!(c, '/' | ' '))
+        .filter(|c| *c != ' ')
+        .collect();
+    if sizes.contains('/') {
         let kinds = VOCABULARY.iter().flat_map(|e| match e.reads {
             Reads::Cross(kinds) => kinds,
             _ => &[],
         });
         for k in kinds.filter(|k| k.offered_any_size) {
-            candidates.push(format!("{}/{n} {}", m.trim(), k.name));
+            candidates.push(format!("{sizes} {}", k.name));
         }
     }
     let digits: String = lower.chars().filter(char::is_ascii_digit).collect();
@@ -673,6 +699,16 @@ mod tests {
                 }
             }
         }
+        for m in 1..MAX_CROSS_SIDE {
+            for c in 1..=MAX_CROSS_SIDE - m {
+                for n in 1..=MAX_CROSS_SIDE - c {
+                    for (left, purl) in [(false, false), (true, false), (false, true), (true, true)]
+                    {
+                        all.push(centre_cross(m, c, n, left, purl));
+                    }
+                }
+            }
+        }
         for ins in all {
             let read = parse_stitch(&ins.name()).map(|(s, n)| (s.ins, n));
             assert_eq!(read, Some((ins, 1)), "{}", ins.name());
@@ -683,6 +719,7 @@ mod tests {
     fn suggestions() {
         assert_eq!(suggest("k2tgo"), "k2tog");
         assert_eq!(suggest("2/2 RX"), "2/2 RC");
+        assert_eq!(suggest("1/1/1 LPX"), "1/1/1 LPC");
         assert_eq!(suggest("kk3"), "k3");
         assert_eq!(suggest("rep frm *"), "rep from *");
     }

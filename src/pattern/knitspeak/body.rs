@@ -506,7 +506,12 @@ fn unknown(what: &str, instruction: usize, token: &str) -> KnitError {
     let closest = suggest(token);
     // A well-formed cross too wide for the vocabulary is "closest" to itself: say why instead.
     if closest.eq_ignore_ascii_case(token.trim()) {
-        let why = if token.contains('/') {
+        let why = if token.matches('/').count() == 2 {
+            format!(
+                "a cable around a centre (m/c/n) moves each group at most {MAX_CROSS_SIDE} \
+                 columns: m + c and c + n are at most {MAX_CROSS_SIDE} (e.g. \"3/3/3 RC\")"
+            )
+        } else if token.contains('/') {
             format!(
                 "a cable or twist crosses at most {MAX_CROSS_SIDE} stitches over \
                  {MAX_CROSS_SIDE} (e.g. \"6/6 RC\")"

@@ -73,6 +73,16 @@ def test_a_cross_too_wide_is_explained_not_suggested_as_itself() -> None:
     assert "did you mean" not in str(e.value)
 
 
+def test_a_centre_cross_too_wide_is_explained() -> None:
+    # 4/3/4: each side group travels 7 columns, one more than any plain cross.
+    with pytest.raises(knitwear.PatternError) as e:
+        knitwear.Pattern.from_knitspeak("Row 1: 4/3/4 LPC")
+    assert "m + c and c + n are at most 6" in str(e.value)
+    assert "did you mean" not in str(e.value)
+    # The widest that reads.
+    knitwear.Pattern.from_knitspeak("Row 1 (RS): 3/3/3 LPC, p2.\nRow 2 (WS): K2, p3, k3, p3.")
+
+
 def test_an_endless_or_huge_file_is_refused_without_reading_it_all() -> None:
     with pytest.raises(knitwear.PatternError, match="larger than the 4 MiB"):
         knitwear.Pattern.from_file("/dev/zero")
