@@ -1106,3 +1106,44 @@ fn a_column_slipped_in_every_row_is_refused_at_the_knit() {
             .unwrap_or_else(|e| panic!("{name}: {e}"));
     }
 }
+
+/// A loop that crosses exactly half of its repeat (a 1/3 cross beside p2, a k2tog or ssk in a
+/// 2-stitch repeat) is as far from its landing one way round the repeat as the other: it lands
+/// the way its instruction moves it, in its own repeat. (It used to land half a repeat the
+/// other way: in the neighbouring repeat's column, so a k2tog gathered the loop on its left
+/// and leaned as a ssk does, and a cable at the sheet's edge left a stitch pulled through no
+/// loop.) Charts draw them and read them back.
+#[test]
+fn a_loop_crossing_half_its_repeat_lands_the_way_it_is_worked() {
+    for (text, want) in [
+        (
+            "Row 1 (RS): *P2, 1/3 LC; rep from *.\nRow 2: *P4, k2; rep from *.",
+            &[-3][..],
+        ),
+        (
+            "Row 1 (RS): *P2, 1/3 RC; rep from *.\nRow 2: *P4, k2; rep from *.",
+            &[3],
+        ),
+        // The front loop three columns left, the back one three right.
+        (
+            "Row 1 (RS): *P2, 1/2/1 LPC; rep from *.\nRow 2: *P1, k2, p1, k2; rep from *.",
+            &[-3, 3],
+        ),
+        // Right to left: the yo, then the k2tog of the next two loops, whose right one
+        // moves left onto the k2tog's column; a ssk's left one moves right.
+        ("Row 1 (RS): *yo, k2tog; rep from *.\nRow 2: Purl.", &[-1]),
+        ("Row 1 (RS): *ssk, yo; rep from *.\nRow 2: Purl.", &[1]),
+    ] {
+        let p = ks(text);
+        let half = (p.width() / 2) as i8;
+        let mut lands: Vec<i8> = (0..p.width())
+            .map(|w| p.stitch(p.height() - 1, w).land_offset)
+            .filter(|l| l.abs() == half)
+            .collect();
+        lands.sort();
+        assert_eq!(lands, want, "{text}");
+        let drawn = p.chart();
+        assert!(!drawn.contains("# rows"), "{drawn}");
+        assert_eq!(StitchPattern::from_chart(&drawn).unwrap().chart(), drawn);
+    }
+}

@@ -9,6 +9,7 @@
 //! decrease in the same row, as nearly all lace does.
 
 use super::instruction::{Instruction, Worked};
+use super::knitspeak::shorter_way;
 use super::stitch::{Face, Form, Stitch};
 use crate::error::{KnitError, Result};
 
@@ -171,14 +172,9 @@ fn oriented(w: Worked, right_side: bool) -> Worked {
 }
 
 /// The column offset from `from` to `to` along a row of `width` columns that repeats, the
-/// shorter way round.
+/// shorter way round (half the row either way: the way the instruction moves it).
 fn travel(to: usize, from: usize, width: usize, row: &WrittenRow, ins: &Instruction) -> Result<i8> {
-    let mut d = to as i64 - from as i64;
-    let w = width as i64;
-    d = d.rem_euclid(w);
-    if d > w / 2 {
-        d -= w;
-    }
+    let d = shorter_way(to as i64 - from as i64, width);
     if d.unsigned_abs() as usize > MAX_TRAVEL {
         return Err(KnitError::Pattern(format!(
             "Row {}, \"{}\": a loop would travel {} columns; knitwear lets loops lean at most \

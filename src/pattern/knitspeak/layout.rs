@@ -373,14 +373,22 @@ pub(crate) fn normalised(mut cells: Vec<Vec<Stitch>>, width: usize) -> Vec<Vec<S
     cells
 }
 
-/// `d` columns along a row `width` wide that repeats, the shorter way round.
-pub(crate) fn wrap(d: i64, width: usize) -> i8 {
+/// `d` columns along a row `width` wide that repeats, the shorter way round; half the width
+/// either way is as short, and keeps the way `d` goes (a loop crossing half of a repeat,
+/// a 1/2/1 cross beside p2 or a ssk in a 2-stitch repeat, lands in its own repeat, not
+/// the neighbouring one, and leans the way it is worked).
+pub(crate) fn shorter_way(d: i64, width: usize) -> i64 {
     let w = width as i64;
-    let mut d = d.rem_euclid(w);
-    if d > w / 2 {
-        d -= w;
+    let mut r = d.rem_euclid(w);
+    if r > w / 2 || (2 * r == w && d < 0) {
+        r -= w;
     }
-    d as i8
+    r
+}
+
+/// [`shorter_way`] for an offset that fits a cell (one measured from a cell's own offset).
+pub(crate) fn wrap(d: i64, width: usize) -> i8 {
+    shorter_way(d, width) as i8
 }
 
 /// A width note the rows do not fit: the note, what it says and what the rows need.

@@ -88,7 +88,7 @@ mod lexer;
 pub(super) mod numbers;
 mod width_note;
 
-pub(crate) use layout::{lcm, normalised, wrap};
+pub(crate) use layout::{lcm, normalised, shorter_way, wrap};
 
 use self::body::parse_body;
 use self::headers::{parse_header, RowSheet};
