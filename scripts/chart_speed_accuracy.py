@@ -2,7 +2,7 @@
 and camera, measure time and error, and chart error against time with the defaults marked.
 
     .venv/bin/python scripts/chart_speed_accuracy.py [--zip dist/knitwear-0.1.0.zip]
-        [--out docs/charts] [--quick] [--repeats 1]
+        [--out docs/charts] [--quick] [--repeats 1] [--replot]
 
 Runs headless Blender (the `bpy` module) with the built extension installed, as the benchmarks
 do (`benchmarks/bench_setup.py`). The scene: a 20 x 120 cm knitted strip (40 wales x 336
@@ -35,15 +35,18 @@ and with the texture level off. For each point:
 
 Writes docs/charts/speed_accuracy_ssim.png (image error against click-to-mesh time),
 speed_accuracy_target.png (SSIM against full detail against triangles: the issue's target),
-speed_accuracy_tessellation.png (tessellation error against triangles) and
-speed_accuracy_renders.png (the reference, auto detail, and their difference), and prints a
-table. Timings are medians of `--repeats` knits. `pile slices per pile` is a knob of the plush
-(`knitwear.plush`), not of a knit; it is not swept here.
+speed_accuracy_tessellation.png (tessellation error against triangles),
+speed_accuracy_renders.png (the reference, auto detail, and their difference) and
+speed_accuracy.json (the figures), and prints a table. `--replot` redraws the three scatter
+charts from the JSON in seconds, without Blender. Timings are medians of `--repeats` knits.
+`pile slices per pile` is a knob of the plush (`knitwear.plush`), not of a knit; it is not
+swept here.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import sys
 import tempfile
@@ -458,11 +461,75 @@ def _ticks(lo: float, hi: float, log: bool) -> list[float]:
     return [c for c in cand if lo <= c <= hi]
 
 
+def _tick_label(v: float) -> str:
+    """Tick text: 100k, 2M rather than 100000, 2e+06."""
+    if abs(v) >= 1e6:
+        return f"{v / 1e6:g}M"
+    if abs(v) >= 1e4:
+        return f"{v / 1e3:g}k"
+    return f"{v:g}"
+
+
+Box = tuple[float, float, float, float]
+
+
+def _overlap(a: Box, b: Box) -> float:
+    w = min(a[2], b[2]) - max(a[0], b[0])
+    h = min(a[3], b[3]) - max(a[1], b[1])
+    return w * h if w > 0 and h > 0 else 0.0
+
+
+def place_labels(d: ImageDraw.ImageDraw, labels: list[tuple[float, float, str, int]],
+                 obstacles: list[Box], frame: Box) -> list[tuple[float, float, str]]:
+    """Greedy label placement: each label (anchor x, y, text, font size), in the order given,
+    takes the first of sixteen spots around its point (eight directions, near then far) that
+    overlaps no placed label, marker or line, and otherwise the spot that overlaps least.
+    Returns the top-left corner of each label's text box, in order."""
+    placed: list[Box] = []
+    out = []
+    for x, y, text, size in labels:
+        x0, y0, x1, y1 = d.textbbox((0, 0), text, font=font(size))
+        w, h = x1 - x0, y1 - y0
+        best: tuple[float, Box] | None = None
+        for gap in (7.0, 16.0):
+            for dx, dy in ((1, -1), (1, 0), (1, 1), (0, -1), (0, 1), (-1, -1), (-1, 0),
+                           (-1, 1)):
+                bx = x + gap * dx if dx > 0 else x - gap * -dx - w if dx < 0 else x - w / 2
+                by = y + gap * dy if dy > 0 else y - gap * -dy - h if dy < 0 else y - h / 2
+                box = (bx, by, bx + w, by + h)
+                cost = sum(_overlap(box, o) for o in placed) * 4
+                cost += sum(_overlap(box, o) for o in obstacles)
+                inside = _overlap(box, frame)
+                cost += (w * h - inside) * 8 + gap * 0.01
+                if best is None or cost < best[0]:
+                    best = (cost, box)
+                if cost < 0.5:
+                    break
+            if best is not None and best[0] < 0.5:
+                break
+        assert best is not None
+        box = best[1]
+        placed.append(box)
+        out.append((box[0] - x0, box[1] - y0, text))
+    return out
+
+
+def _wrap(d: ImageDraw.ImageDraw, text: str, size: int, width: float) -> list[str]:
+    lines: list[str] = []
+    for word in text.split(" "):
+        if lines and d.textlength(lines[-1] + " " + word, font=font(size)) <= width:
+            lines[-1] += " " + word
+        else:
+            lines.append(word)
+    return lines
+
+
 def scatter_chart(path: Path, title: str, points: list[tuple[str, str, float, float, bool]],
                   xlabel: str, ylabel: str, log_x: bool, log_y: bool, note: str) -> None:
     """``points``: (series, label, x, y, is_default). Each series is a line through its
-    points in x order; the default is ringed."""
-    w, h, left, right, top, bottom = 960, 620, 90, 30, 56, 520
+    points in the order given; the default is ringed. The legend stands to the right of the
+    plot, and points that fall on one pixel share one label."""
+    w, h, left, right, top, bottom = 1200, 620, 90, 300, 56, 520
     img = Image.new("RGB", (w, h), WHITE)
     d = ImageDraw.Draw(img)
     xs = [p[2] for p in points]
@@ -474,41 +541,76 @@ def scatter_chart(path: Path, title: str, points: list[tuple[str, str, float, fl
 
     xlo, xhi = pad(min(xs), max(xs), log_x)
     ylo, yhi = pad(min(ys), max(ys), log_y)
-    ax = _axis(xlo, xhi, left, w - right, log_x)
+    x1 = w - right
+    ax = _axis(xlo, xhi, left, x1, log_x)
     ay = _axis(ylo, yhi, bottom, top, log_y)
-    d.text((w / 2, 16), title, fill=INK, font=font(19), anchor="mt")
+    d.text(((left + x1) / 2, 16), title, fill=INK, font=font(19), anchor="mt")
     for t in _ticks(ylo, yhi, log_y):
-        d.line([(left, ay(t)), (w - right, ay(t))], fill=GRID)
-        d.text((left - 6, ay(t)), f"{t:g}", fill=INK, font=font(13), anchor="rm")
+        d.line([(left, ay(t)), (x1, ay(t))], fill=GRID)
+        d.text((left - 6, ay(t)), _tick_label(t), fill=INK, font=font(13), anchor="rm")
     for t in _ticks(xlo, xhi, log_x):
         d.line([(ax(t), top), (ax(t), bottom)], fill=GRID)
-        d.text((ax(t), bottom + 6), f"{t:g}", fill=INK, font=font(13), anchor="mt")
-    d.rectangle([left, top, w - right, bottom], outline=INK)
-    d.text((w / 2, bottom + 28), xlabel, fill=INK, font=font(15), anchor="mt")
+        d.text((ax(t), bottom + 6), _tick_label(t), fill=INK, font=font(13), anchor="mt")
+    d.rectangle([left, top, x1, bottom], outline=INK)
+    d.text(((left + x1) / 2, bottom + 28), xlabel, fill=INK, font=font(15), anchor="mt")
     lab = Image.new("RGBA", (420, 22), (255, 255, 255, 0))
     ImageDraw.Draw(lab).text((210, 11), ylabel, fill=INK, font=font(15), anchor="mm")
     rot = lab.rotate(90, expand=True)
     img.paste(rot, (8, int((top + bottom) / 2 - rot.height / 2)), rot)
     series = list(dict.fromkeys(p[0] for p in points))
+    obstacles: list[Box] = []
     for name in series:
-        pts = sorted((p for p in points if p[0] == name), key=lambda p: p[2])
+        # In the order the knob was swept (not by x: a time that does not fall with the knob
+        # shows as a kink rather than a reordered line).
+        pts = [p for p in points if p[0] == name]
         color = COLORS.get(name, GREY)
         xy = [(ax(p[2]), ay(p[3])) for p in pts]
         if len(xy) > 1:
             d.line(xy, fill=color, width=2)
+            for (ax0, ay0), (ax1, ay1) in zip(xy, xy[1:], strict=False):
+                n = max(1, int(math.hypot(ax1 - ax0, ay1 - ay0) / 4))
+                obstacles += [(ax0 + (ax1 - ax0) * i / n - 2, ay0 + (ay1 - ay0) * i / n - 2,
+                               ax0 + (ax1 - ax0) * i / n + 2, ay0 + (ay1 - ay0) * i / n + 2)
+                              for i in range(n + 1)]
         for (px, py), p in zip(xy, pts, strict=True):
             d.ellipse([px - 4, py - 4, px + 4, py + 4], fill=color)
-            d.text((px + 6, py - 6), p[1], fill=color, font=font(12), anchor="lb")
+            r = 11 if p[4] else 5
+            obstacles.append((px - r, py - r, px + r, py + r))
             if p[4]:
                 d.ellipse([px - 10, py - 10, px + 10, py + 10], outline=(200, 0, 0), width=3)
-                d.text((px + 12, py + 8), "default", fill=(200, 0, 0), font=font(13),
-                       anchor="lt")
-    lx, ly = left + 10, top + 10
+    # Points on one pixel (or nearly) share a label, in the series colour when they share one.
+    groups: list[list[tuple[float, float, tuple[str, str, float, float, bool]]]] = []
+    for p in points:
+        px, py = ax(p[2]), ay(p[3])
+        for g in groups:
+            if abs(g[0][0] - px) < 5 and abs(g[0][1] - py) < 5:
+                g.append((px, py, p))
+                break
+        else:
+            groups.append([(px, py, p)])
+    labels = []
+    colors = []
+    for g in groups:
+        names = {q[2][0] for q in g}
+        text = ", ".join(dict.fromkeys(q[2][1] for q in g))
+        if any(q[2][4] for q in g):
+            text += " (default)"
+        colors.append((200, 0, 0) if any(q[2][4] for q in g)
+                      else COLORS.get(g[0][2][0], GREY) if len(names) == 1 else INK)
+        labels.append((g[0][0], g[0][1], text, 12))
+    for (tx, ty, text), color in zip(place_labels(d, labels, obstacles, (left, top, x1, bottom)),
+                                     colors, strict=True):
+        d.text((tx, ty), text, fill=color, font=font(12))
+    lx, ly = x1 + 16, top
     for i, name in enumerate(series):
-        y = ly + 18 * i
+        y = ly + 20 * i
         d.line([(lx, y + 7), (lx + 22, y + 7)], fill=COLORS.get(name, GREY), width=3)
         d.text((lx + 28, y), name, fill=INK, font=font(13))
-    d.text((left, h - 30), note, fill=GREY, font=font(12))
+    d.ellipse([lx + 4, ly + 20 * len(series) + 2, lx + 18, ly + 20 * len(series) + 16],
+              outline=(200, 0, 0), width=3)
+    d.text((lx + 28, ly + 20 * len(series)), "the defaults", fill=INK, font=font(13))
+    for i, line in enumerate(_wrap(d, note, 12, w - left - 20)):
+        d.text((left, bottom + 58 + 16 * i), line, fill=GREY, font=font(12))
     path.parent.mkdir(parents=True, exist_ok=True)
     img.quantize(64).save(path, optimize=True)
 
@@ -538,6 +640,46 @@ def diff_image(a: Path, b: Path, out: Path, gain: float = 4.0) -> None:
 # ---------------------------------------------------------------------------------------------
 
 
+#: The figures of the last sweep, beside the charts, so the charts can be redrawn (--replot).
+DATA = "speed_accuracy.json"
+#: The measured fields of a record that the charts and the table use.
+DATA_FIELDS = ("series", "label", "default", "click", "core", "triangles", "full_triangles",
+               "tess_px", "ssim", "psnr", "ssim_full")
+
+
+def save_data(path: Path, records: list[Record]) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    scene = {"courses": COURSES, "wales": WALES, "resolution": list(RES),
+             "supersample": SUPERSAMPLE}
+    points = [{k: r[k] for k in DATA_FIELDS} for r in records]
+    path.write_text(json.dumps({"scene": scene, "points": points}, indent=1) + "\n")
+
+
+def draw_scatter_charts(out: Path, records: list[Record]) -> None:
+    """The three scatter charts, from the sweep's records (or the saved figures)."""
+    points = [r for r in records if r["series"] != "reference"]
+    default = next(r for r in records if r["default"])
+    note = (f"{COURSES} x {WALES} stitches receding from a 35 mm camera, {RES[0]} x {RES[1]}; "
+            f"default auto detail: {default['triangles']:,} triangles vs "
+            f"{default['full_triangles']:,} at full detail")
+    scatter_chart(out / "speed_accuracy_ssim.png",
+                  "Image error against click-to-mesh time",
+                  [(r["series"], r["label"], r["click"], r["ssim"], r["default"])
+                   for r in points],
+                  "click to mesh (s)", "SSIM against the reference render", True, False, note)
+    scatter_chart(out / "speed_accuracy_tessellation.png",
+                  "Tessellation error against triangles",
+                  [(r["series"], r["label"], r["triangles"], max(r["tess_px"], 1e-3),
+                    r["default"]) for r in points],
+                  "triangles", "tessellation error, 99th percentile (pixels)", True, True, note)
+    scatter_chart(out / "speed_accuracy_target.png",
+                  "Image error against triangles: the issue's target",
+                  [(r["series"], r["label"], r["triangles"], r["ssim_full"], r["default"])
+                   for r in points if r["label"] != "16"],
+                  "triangles", "SSIM against full detail at the defaults", True, False,
+                  note + "; target: 5x fewer triangles at SSIM 0.98 or better")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--zip", type=Path, default=None, help="extension zip to install")
@@ -548,7 +690,13 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=1)
     parser.add_argument("--no-flicker", action="store_true",
                         help="skip the flicker measurement (9 more renders)")
+    parser.add_argument("--replot", action="store_true",
+                        help=f"redraw the three scatter charts from --out/{DATA}, the figures "
+                        "the last sweep saved, without sweeping again")
     args = parser.parse_args()
+    if args.replot:
+        draw_scatter_charts(args.out, json.loads((args.out / DATA).read_text())["points"])
+        return
 
     start_blender(args.zip)
     from bl_ext.user_default.knitwear import api, texture  # noqa: I001
@@ -579,7 +727,6 @@ def main() -> None:
               f"tris {rec['triangles']:>9,}  SSIM {rec['ssim']:.4f}  PSNR {rec['psnr']:5.1f}  "
               f"tess p99 {rec['tess_px']:.2f} px  levels {lv}", flush=True)
 
-    points = [r for r in records if r["series"] != "reference"]
     default = next(r for r in records if r["default"])
     k_uniform = next(i for i, r in enumerate(records) if r["series"].startswith("samples")
                      and r["label"] == "16")
@@ -593,25 +740,8 @@ def main() -> None:
         print(f"  {r['series']:32s} {r['label']:10s} SSIM {r['ssim_full']:.4f}  "
               f"of floor {(1 - r['ssim_full']) / (1 - floor):.2f}  "
               f"PSNR {psnr(image, images[k_uniform]):5.1f}  triangles {r['triangles']:,}")
-    note = (f"{COURSES} x {WALES} stitches receding from a 35 mm camera, {RES[0]} x {RES[1]}; "
-            f"default auto detail: {default['triangles']:,} triangles vs "
-            f"{default['full_triangles']:,} at full detail")
-    scatter_chart(args.out / "speed_accuracy_ssim.png",
-                  "Image error against click-to-mesh time",
-                  [(r["series"], r["label"], r["click"], r["ssim"], r["default"])
-                   for r in points],
-                  "click to mesh (s)", "SSIM against the reference render", True, False, note)
-    scatter_chart(args.out / "speed_accuracy_tessellation.png",
-                  "Tessellation error against triangles",
-                  [(r["series"], r["label"], r["triangles"], max(r["tess_px"], 1e-3),
-                    r["default"]) for r in points],
-                  "triangles", "tessellation error, 99th percentile (pixels)", True, True, note)
-    scatter_chart(args.out / "speed_accuracy_target.png",
-                  "Image error against triangles: the issue's target",
-                  [(r["series"], r["label"], r["triangles"], r["ssim_full"], r["default"])
-                   for r in points if r["label"] != "16"],
-                  "triangles", "SSIM against full detail at the defaults", True, False,
-                  note + "; target: 5x fewer triangles at SSIM 0.98 or better")
+    save_data(args.out / DATA, records)
+    draw_scatter_charts(args.out, records)
     diff = renders / "diff.png"
     diff_image(uniform["file"], default["file"], diff)
     renders_chart(args.out / "speed_accuracy_renders.png",

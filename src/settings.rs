@@ -381,7 +381,7 @@ pub const HIDDEN_SUPERSAMPLING: Setting = Setting {
     addon_name: Some("cull_hidden_samples"),
     addon_default: Some(2.0),
     addon_why: "an anti-aliased render spreads its own samples, and yarn under 2 pixels thick \
-                is kept wherever they might catch it: 2 per pixel side leaves 9.5x fewer \
+                is kept wherever they might catch it: 2 per pixel side leaves 9.1x fewer \
                 triangles than full detail, within 0.004 SSIM of keeping the hidden yarn",
     unit: "samples per pixel side",
     doc: "Samples per pixel side at which Cull Hidden Yarn looks for the yarn the camera \
