@@ -4,11 +4,18 @@ Headless there is no UI to draw into, so a recording stand-in for `bpy.types.UIL
 the calls: enough to catch a misspelt property or a setting that no mode ever shows.
 """
 
+import sys
+from pathlib import Path
 from types import ModuleType
 from typing import Any
 
 import bpy
+import numpy as np
 from blender_scenes import SMALL, nurbs_patch
+from PIL import Image
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "scripts"))
+import ui_pictures  # noqa: E402
 
 
 class FakeLayout:
@@ -96,3 +103,32 @@ def test_object_menu_entries(addon: ModuleType) -> None:
         ("operator", "object.knitwear_knit"),
         ("operator", "object.knitwear_update"),
     ]
+
+
+def test_ui_pictures_draw_the_panels_as_they_stand(
+    addon: ModuleType, api: ModuleType, tmp_path: Path
+) -> None:
+    """scripts/ui_pictures.py (the pictures of docs/blender.md) draws the sidebar from the
+    panels' real draw code and the knit's real values: a yarn colour set on the knit shows as
+    its swatch, and a section Blender shows closed hides its widgets."""
+    knit = api.knit_object(nurbs_patch(), **SMALL)
+    bpy.context.view_layer.objects.active = knit
+    knit.knitwear.color_1 = (1.0, 0.0, 0.0)
+    opened = ui_pictures.sidebar(open_all=True)
+    assert [title for title, _ in opened] == ["Knitwear", "Plush"]
+    ui_pictures.picture(tmp_path / "open.png", opened)
+    ui_pictures.picture(tmp_path / "default.png", ui_pictures.sidebar())
+    shown = np.asarray(Image.open(tmp_path / "open.png").convert("RGB")).reshape(-1, 3)
+    red = np.all(shown == (255, 0, 0), axis=1).sum()
+    assert red > 200, f"{red} pixels of the red swatch"
+
+    def props(widgets: list[Any]) -> set[str]:
+        return {w.name for w in widgets if w.kind == "prop"} | {
+            name for w in widgets for name in props(w.children)
+        }
+
+    default = dict(ui_pictures.sidebar())["Knitwear"]
+    assert "ring_segments" in props(dict(opened)["Knitwear"])
+    assert "ring_segments" not in props(default)  # Yarn starts closed
+    h_open = Image.open(tmp_path / "open.png").height
+    assert Image.open(tmp_path / "default.png").height < h_open
