@@ -557,6 +557,50 @@ fn a_cable_in_a_repeat_beyond_the_plain_stand_in_is_tuned_whole_and_interlocks()
     assert!(clearance >= 0.25, "{clearance}");
 }
 
+/// A 4/4 cable in a 16-row repeat on 24 wales, knitted to 54 and to 60 courses of a 12 x 20 cm
+/// sheet: sizes whose stitch proportions tune differently from the 12 x 10 cm sheet's. There a
+/// cable loop's head once stood in front of the leg pulled through it (24 of 5,798 crossings
+/// wrong), and later two loops of the 60-course bind-off were left free (before commit
+/// 5c1c7cc). Every crossing is the right way round at both, with no loop or foot left free.
+#[test]
+fn a_4_4_cable_interlocks_at_the_sizes_where_a_head_once_stood_in_front() {
+    let pattern = StitchPattern::from_knitspeak(
+        "Rows 1, 3, 5, 7, 9, 11, and 15 (RS): P2, k8, p2.\n\
+         Rows 2, 4, 6, 8, 10, 12, 14, and 16: K2, p8, k2.\n\
+         Row 13: P2, 4/4 RC, p2.",
+    )
+    .unwrap();
+    let plane = PlaneSurface {
+        width: 0.12,
+        height: 0.2,
+    };
+    for courses in [54, 60] {
+        let p = KnitParams {
+            threads: Some(2),
+            courses: Some(courses),
+            wales: Some(24),
+            ..KnitParams::default()
+        };
+        let order = PreparedKnit::new(&plane, &pattern, &p)
+            .unwrap()
+            .crossing_order(&plane)
+            .unwrap();
+        println!("{courses} courses: {order:?}");
+        assert_eq!(
+            order.agree, order.decided,
+            "{courses} courses: {:?}",
+            order.first_disagreement
+        );
+        assert_eq!(order.interlock_agree, order.interlock_decided);
+        assert!(order.interlock_decided > 5000, "{courses} courses");
+        assert_eq!(
+            (order.free_loops, order.free_feet),
+            (0, 0),
+            "{courses} courses"
+        );
+    }
+}
+
 /// `pattern` knitted on a 12 x 10 cm sheet at default settings, with every crossing the
 /// right way round and more than 2,000 interlock crossings; its clearance and crossings.
 fn knitted_as_written_on_a_sheet(pattern: &StitchPattern) -> (f32, CrossingOrder) {
