@@ -592,27 +592,40 @@ impl SegmentIndex {
 
         // (cell, segment) pairs: each segment split into pieces no longer than a cell, each
         // piece's box overlapping at most 2 x 2 x 2 cells; in segment order.
-        let pairs: Vec<([i64; 3], u32)> = ends
-            .par_iter()
+        // Plain loops over chunks of segments rather than nested iterator adapters: this
+        // runs for every measurement of a first knit's tuning, and the adapters cost about a
+        // tenth of that search. Chunks are joined in order, so the pairs are the same list.
+        const CHUNK: usize = 1024;
+        let chunks: Vec<Vec<([i64; 3], u32)>> = ends
+            .par_chunks(CHUNK)
             .enumerate()
-            .flat_map_iter(|(i, &[a, b])| {
-                let pieces = ((a.distance(b) * inv_cell).ceil() as usize).clamp(1, 1 << 20);
-                (0..pieces).flat_map(move |p| {
-                    let t0 = p as f32 / pieces as f32;
-                    let t1 = (p + 1) as f32 / pieces as f32;
-                    // The last piece ends exactly at b (lerp may round beside it).
-                    let (u, v) = (
-                        a.lerp(b, t0),
-                        if p + 1 == pieces { b } else { a.lerp(b, t1) },
-                    );
-                    let (c0, c1) = (cell_of(u.min(v)), cell_of(u.max(v)));
-                    (c0[0]..=c1[0]).flat_map(move |x| {
-                        (c0[1]..=c1[1])
-                            .flat_map(move |y| (c0[2]..=c1[2]).map(move |z| ([x, y, z], i as u32)))
-                    })
-                })
+            .map(|(k, chunk)| {
+                let mut out = Vec::with_capacity(2 * chunk.len());
+                for (n, &[a, b]) in chunk.iter().enumerate() {
+                    let i = (k * CHUNK + n) as u32;
+                    let pieces = ((a.distance(b) * inv_cell).ceil() as usize).clamp(1, 1 << 20);
+                    for p in 0..pieces {
+                        let t0 = p as f32 / pieces as f32;
+                        let t1 = (p + 1) as f32 / pieces as f32;
+                        // The last piece ends exactly at b (lerp may round beside it).
+                        let (u, v) = (
+                            a.lerp(b, t0),
+                            if p + 1 == pieces { b } else { a.lerp(b, t1) },
+                        );
+                        let (c0, c1) = (cell_of(u.min(v)), cell_of(u.max(v)));
+                        for x in c0[0]..=c1[0] {
+                            for y in c0[1]..=c1[1] {
+                                for z in c0[2]..=c1[2] {
+                                    out.push(([x, y, z], i));
+                                }
+                            }
+                        }
+                    }
+                }
+                out
             })
             .collect();
+        let pairs = chunks.concat();
         let (cells, entries) = CellTable::new(hi_cell, pairs);
 
         SegmentIndex {

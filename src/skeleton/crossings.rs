@@ -250,11 +250,12 @@ fn for_each_crossing(
     };
     let grid = CellGrid::new(segs.iter().map(cells_of));
     let columns = (period / cell.x).round() as i64;
-    // The (segment, wrap) pairs already visited from segment `i`: a pair of segments that
-    // share several cells is met in each.
-    let mut seen: Vec<(usize, i64)> = Vec::new();
+    // Which (segment, wrap) pairs were already visited from segment `i`: a pair of segments
+    // that share several cells is met in each. `seen[3 k + wrap + 1]` holds the last `i + 1`
+    // that visited `k` at `wrap`, so the check is one load rather than a scan of the list of
+    // pairs met (a quarter of this function's time in a first knit's tuning).
+    let mut seen: Vec<usize> = vec![0; 3 * segs.len()];
     for (i, s) in segs.iter().enumerate() {
-        seen.clear();
         let (k0, k1) = cells_of(s);
         for x in k0.0..=k1.0 {
             for y in k0.1..=k1.1 {
@@ -262,10 +263,11 @@ fn for_each_crossing(
                 for &wrap in shifts {
                     for &k in grid.cell(x + wrap * columns, y) {
                         let k = k as usize;
-                        if k <= i || seen.contains(&(k, wrap)) {
+                        let slot = 3 * k + (wrap + 1) as usize;
+                        if k <= i || seen[slot] == i + 1 {
                             continue;
                         }
-                        seen.push((k, wrap));
+                        seen[slot] = i + 1;
                         let o = &segs[k];
                         if o.piece == s.piece && o.index.abs_diff(s.index) < 2 {
                             continue;
