@@ -15,7 +15,8 @@ simplified, so it is a picture of the UI state, not a pixel-exact screenshot.
 
 Writes sidebar_source.png (a NURBS surface selected: Knit and Plush buttons), sidebar_knit.png
 (a knit selected, sections as Blender first shows them), sidebar_knit_open.png (every section
-open), redo_knit.png (the redo panel after Knit this surface) and object_menu.png.
+open), redo_knit.png (the redo panel after Knit this surface), redo_scarf.png (the same, set
+as the first-knit tutorial says) and object_menu.png.
 """
 
 from __future__ import annotations
@@ -149,14 +150,20 @@ def record(draw: Any, owner: Any = None, open_all: bool = False) -> list[Widget]
 
 
 class OperatorDefaults:
-    """An operator's properties at their defaults, as its redo panel first shows them: the
-    ``bl_rna`` of the operator type, each property readable as an attribute."""
+    """An operator's properties at their defaults, as its redo panel first shows them, or at
+    the ``values`` given: the ``bl_rna`` of the operator type, each property readable as an
+    attribute."""
 
-    def __init__(self, rna: Any) -> None:
+    def __init__(self, rna: Any, **values: Any) -> None:
         self.bl_rna = rna
         self.layout: RecordingLayout | None = None
+        self._values = values  # set in the redo panel, as a user would
 
     def __getattr__(self, name: str) -> Any:
+        if name.startswith("_"):
+            raise AttributeError(name)
+        if name in self._values:
+            return self._values[name]
         prop = self.bl_rna.properties[name]
         if getattr(prop, "is_array", False):
             return tuple(prop.default_array)
@@ -432,6 +439,11 @@ def main() -> None:
     defaults = OperatorDefaults(bpy.ops.object.knitwear_knit.get_rna_type())
     picture(args.out / "redo_knit.png", [(op.bl_label, record(op.draw, owner=defaults))],
             caption="the redo panel (bottom left of the viewport) after a knit")
+    # The tutorial's scarf (docs/first-knit.md, step 4).
+    scarf = OperatorDefaults(bpy.ops.object.knitwear_knit.get_rna_type(), pattern="rib_2x2",
+                             color_mode="STRIPES", color_count=2, stripe_height=6)
+    picture(args.out / "redo_scarf.png", [(op.bl_label, record(op.draw, owner=scarf))],
+            caption="the redo panel set as in the first-knit tutorial")
     print(f"UI pictures in {args.out}")
 
 
