@@ -228,6 +228,7 @@ impl PreparedKnit {
             SplineSampling {
                 samples_per_loop: s,
                 tension: p.tension,
+                aspect: stitch_height / stitch_width,
             },
         )
         .with_live_loops(p.live_loops);

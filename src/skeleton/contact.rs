@@ -244,6 +244,7 @@ pub fn relieve(
     let sampling = SplineSampling {
         samples_per_loop: SAMPLES,
         tension,
+        aspect: height / width,
     };
     let (h, w) = (pattern.height(), pattern.width());
     let start = {
@@ -320,6 +321,7 @@ pub fn relieve_edges(
     let sampling = SplineSampling {
         samples_per_loop: SAMPLES,
         tension,
+        aspect: height / width,
     };
     let rows = pattern.height();
     let mut first_cell = vec![NO_CELL; wales];

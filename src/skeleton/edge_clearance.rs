@@ -44,6 +44,7 @@ use rayon::prelude::*;
 use super::crossings::{edge_in_front, intersect};
 use super::curvature::{clamp_offsets, stitch_curvature_radii};
 use super::edges::Edge;
+use super::knot_spacing::{course_leans_far, knot_spacing};
 use super::stitch_shape::{landing, stitch_key_points};
 use super::{CardinalSpline, NormalOffsets, SplineSampling, YarnPiece, KEY_POINTS};
 use crate::lattice::Lattice;
@@ -483,6 +484,12 @@ impl FabricNear {
                 super::sampling_density::density(lean)
             })
             .collect();
+        // Which courses space their knots by their chords, as the knit draws them.
+        let metric = sampling.metric(lattice);
+        let far: Vec<bool> = courses
+            .clone()
+            .map(|c| course_leans_far(lattice, pattern, offsets, metric, c))
+            .collect();
         for x in (first..last).filter(|&x| on_fabric(x)) {
             for course in courses.clone() {
                 // The stitch between its neighbours, so that the spline's tangents at its
@@ -496,11 +503,14 @@ impl FabricNear {
                 if on_fabric(x + 1) {
                     kp.extend(stitch(course, x + 1));
                 }
+                let spacing = far[course - courses.start]
+                    .then(|| knot_spacing(&kp, metric, false, Vec3::ZERO));
                 let spline = CardinalSpline {
                     points: &kp,
                     closed: false,
                     tension: sampling.tension,
                     period: Vec3::ZERO,
+                    spacing: spacing.as_deref(),
                 };
                 let start = if before { KEY_POINTS as f32 } else { 0.0 };
                 // The fabric as the knit draws it: the chords between its output samples

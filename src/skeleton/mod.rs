@@ -6,7 +6,9 @@
 //! sample is mapped to 3D as `s(u,v) + lambda n(u,v)`. This binds every sample to the surface
 //! by (u,v), so the yarn follows the surface between key points too (on a sphere it does not
 //! cut chords), and a deforming surface moves the yarn without rebuilding the skeleton. On a
-//! flat surface it is the paper's 3D spline exactly (cardinal splines are affine-invariant).
+//! flat surface it is the paper's 3D spline exactly (cardinal splines are affine-invariant),
+//! but for courses holding a loop that leans three columns or more, whose knots are spaced by
+//! their chords ([`knot_spacing`]) so that the loops' heads do not curl.
 
 pub mod bobbles;
 pub mod contact;
@@ -16,6 +18,7 @@ mod edge_clearance;
 pub mod edges;
 pub mod floats;
 mod key_points;
+mod knot_spacing;
 pub mod leaning_rows;
 mod offsets;
 pub mod relief;
@@ -74,6 +77,15 @@ pub struct SplineSampling {
     pub samples_per_loop: usize,
     /// Cardinal spline tension in [0, 1): 0 is Catmull-Rom. Default: 0.
     pub tension: f32,
+    /// Row height over stitch width: the spline measures its chords in stitch widths.
+    pub aspect: f32,
+}
+
+impl SplineSampling {
+    /// The spline's chord metric on `lattice`: (u, v) to stitch widths.
+    pub fn metric(&self, lattice: &Lattice) -> Vec2 {
+        Vec2::new(1.0 / lattice.tile.x, self.aspect / lattice.tile.y)
+    }
 }
 
 impl YarnPiece {
@@ -341,11 +353,24 @@ fn for_each_sample(
     }
     // A closed course comes back to its start one domain width further on in u.
     let period = Vec3::new(lattice.tile.x * lattice.wales as f32, 0.0, 0.0);
+    let metric = sampling.metric(lattice);
+    let course_piece = piece.float_color.is_none() && piece.edge.is_none() && !piece.bobble;
+    let spacing = (course_piece
+        && knot_spacing::piece_course_leans_far(
+            lattice,
+            pattern,
+            offsets,
+            metric,
+            piece.course,
+            &kp,
+        ))
+    .then(|| knot_spacing::knot_spacing(&kp, metric, piece.closed, period));
     let spline = CardinalSpline {
         points: &kp,
         closed: piece.closed,
         tension: sampling.tension,
         period,
+        spacing: spacing.as_deref(),
     };
     let owner = |t: f32| ((t / KEY_POINTS as f32) as usize).min(piece.stitches - 1) as u32;
     if piece.edge.is_none() {

@@ -1,9 +1,15 @@
 //! Cubic cardinal splines through key points ([Zhong 2001], section 2.3).
 //!
-//! Uniform parameterisation: key point `i` sits at parameter `t = i`. The tangent at key
-//! point `i` is `(1 - tension) (p[i+1] - p[i-1]) / 2`; tension 0 is the Catmull-Rom spline,
-//! tension 1 the polyline. Cardinal splines are affine-invariant, so a spline built in
-//! (u, v, lambda) space maps to the same curve under any affine map of the domain.
+//! Key point `i` sits at parameter `t = i`. With uniform knots the tangent at key point `i`
+//! is `(1 - tension) (p[i+1] - p[i-1]) / 2`; tension 0 is the Catmull-Rom spline, tension 1
+//! the polyline. Cardinal splines are affine-invariant, so a spline built in (u, v, lambda)
+//! space maps to the same curve under any affine map of the domain.
+//!
+//! Where the caller spaces the knots ([`CardinalSpline::spacing`], see
+//! [`super::knot_spacing`]), a segment is the Catmull-Rom segment of those knots (Barry and
+//! Goldman's recursion written as Hermite tangents, as in [Yuksel 2011]), each tangent
+//! scaled by `1 - tension` and the segment still mapped onto `[i, i + 1]`: the curve keeps
+//! its key points, its sampling and a continuous tangent direction.
 
 use glam::Vec3;
 
@@ -17,6 +23,10 @@ pub struct CardinalSpline<'a> {
     pub tension: f32,
     /// Added to a point each time the index wraps past the end (closed splines only).
     pub period: Vec3,
+    /// Knot spacing of each chord, `spacing[i]` from key point `i` to `i + 1` (for a closed
+    /// spline the last one closes it), all positive; `None`: uniform. A segment whose three
+    /// chords are spaced alike is the uniform one exactly.
+    pub spacing: Option<&'a [f32]>,
 }
 
 impl CardinalSpline<'_> {
@@ -45,6 +55,21 @@ impl CardinalSpline<'_> {
         }
     }
 
+    /// The knot spacings of the chords before, of and after segment `i`. An open spline's
+    /// reflected end chords take the spacing of the chord they reflect.
+    fn knots(&self, spacing: &[f32], i: isize) -> (f32, f32, f32) {
+        let n = self.points.len() as isize;
+        let chord = |j: isize| {
+            let j = if self.closed {
+                j.rem_euclid(n)
+            } else {
+                j.clamp(0, n - 2)
+            };
+            spacing[j as usize]
+        };
+        (chord(i - 1), chord(i), chord(i + 1))
+    }
+
     /// The point at parameter `t` (clamped to `[0, t_max]`). Passes through key point `i` at
     /// `t = i` exactly.
     pub fn eval(&self, t: f32) -> Vec3 {
@@ -70,9 +95,19 @@ impl CardinalSpline<'_> {
         let p1 = self.point(i);
         let p2 = self.point(i + 1);
         let p3 = self.point(i + 2);
-        let k = 0.5 * (1.0 - self.tension);
-        let m1 = k * (p2 - p0);
-        let m2 = k * (p3 - p1);
+        let (m1, m2) = match self.spacing.map(|sp| self.knots(sp, i)) {
+            Some((d0, d1, d2)) if d0 != d1 || d1 != d2 => {
+                // The non-uniform Catmull-Rom tangents, scaled to the segment's unit span.
+                let k = 1.0 - self.tension;
+                let m1 = k * d1 * ((p1 - p0) / d0 - (p2 - p0) / (d0 + d1) + (p2 - p1) / d1);
+                let m2 = k * d1 * ((p2 - p1) / d1 - (p3 - p1) / (d1 + d2) + (p3 - p2) / d2);
+                (m1, m2)
+            }
+            _ => {
+                let k = 0.5 * (1.0 - self.tension);
+                (k * (p2 - p0), k * (p3 - p1))
+            }
+        };
         let s2 = s * s;
         let s3 = s2 * s;
         let h00 = 2.0 * s3 - 3.0 * s2 + 1.0;
@@ -99,6 +134,7 @@ mod tests {
                     closed,
                     tension,
                     period: Vec3::ZERO,
+                    spacing: None,
                 };
                 for (i, p) in pts.iter().enumerate() {
                     assert!(
@@ -113,6 +149,7 @@ mod tests {
             closed: true,
             tension: 0.0,
             period: Vec3::ZERO,
+            spacing: None,
         };
         assert!((s.eval(7.0) - pts[0]).length() < 1e-5);
         // With a period, a closed spline ends at its start one period further on.
@@ -122,6 +159,7 @@ mod tests {
             closed: true,
             tension: 0.0,
             period,
+            spacing: None,
         };
         assert!((s.eval(7.0) - (pts[0] + period)).length() < 1e-5);
         assert!((6.0..10.0).contains(&s.eval(6.5).x));
@@ -135,6 +173,7 @@ mod tests {
             closed: false,
             tension: 1.0,
             period: Vec3::ZERO,
+            spacing: None,
         };
         assert!((s.eval(0.5) - Vec3::new(0.5, 0.0, 0.0)).length() < 1e-6);
         assert!((s.eval(1.5) - Vec3::new(1.0, 0.5, 0.0)).length() < 1e-6);

@@ -520,6 +520,7 @@ fn patch_measure(
     let sampling = SplineSampling {
         samples_per_loop: TUNING_SAMPLES,
         tension,
+        aspect: height / width,
     };
     let lines: Vec<Vec<Vec3>> = pieces
         .iter()
