@@ -253,6 +253,12 @@ class Chart:
         self.y = Axis(*ylim, self.MAIN_BOTTOM, self.TOP)
         self.ys = Axis(0.0, 1.0, self.STRIP_BOTTOM, self.STRIP_TOP)
         self.legend: list[tuple[str, tuple[int, int, int], str]] = []
+        # Text drawn over the plot, placed last (see `_place_labels`): (at, text, colour,
+        # size, anchor, the colour of the box behind it).
+        self.labels: list[tuple[tuple[float, float], str, tuple[int, int, int], int, str,
+                                tuple[int, int, int]]] = []
+        # Where they went: (left, top, right, bottom) pixels, each with its box.
+        self.placed: list[tuple[float, float, float, float]] = []
         self._frame()
 
     def _frame(self) -> None:
@@ -290,8 +296,7 @@ class Chart:
         for top, bottom in ((self.TOP, self.MAIN_BOTTOM), (self.STRIP_TOP, self.STRIP_BOTTOM)):
             self.d.rectangle([p0, top, p1, bottom], fill=fill)
         if text:
-            self.d.text(((p0 + p1) / 2, self.TOP + 6), text, fill=INK, font=font(13),
-                        anchor="mt")
+            self.labels.append((((p0 + p1) / 2, self.TOP + 6), text, INK, 13, "mt", fill))
 
     def redraw_grid(self) -> None:
         """Grid lines over shaded regions (regions are drawn first and cover them)."""
@@ -304,14 +309,13 @@ class Chart:
         for s in range(int(x0), int(x1), 12):
             self.d.line([(s, py), (min(s + 7, x1), py)], fill=color, width=2)
         at, anchor = ((x1 - 4, py + 4), "rt") if below else ((x1 - 4, py - 3), "rb")
-        self.d.text(at, text, fill=color, font=font(12), anchor=anchor)
+        self.labels.append((at, text, color, 12, anchor, WHITE))
 
     def vline(self, x: float, color: tuple[int, int, int], text: str) -> None:
         px = self.x(x)
         for s in range(self.TOP, self.STRIP_BOTTOM, 10):
             self.d.line([(px, s), (px, min(s + 6, self.STRIP_BOTTOM))], fill=color, width=2)
-        self.d.text((px + 4, self.MAIN_BOTTOM - 6), text, fill=color, font=font(13),
-                    anchor="lb")
+        self.labels.append(((px + 4, self.MAIN_BOTTOM - 6), text, color, 13, "lb", WHITE))
 
     def series(self, xs: Sequence[float], ys: Sequence[float | None],
                color: tuple[int, int, int], name: str, strip: bool = False,
@@ -367,8 +371,8 @@ class Chart:
             py = self.y(level)
             self.d.ellipse([p - 6, py - 6, p + 6, py + 6], outline=color, width=2)
             side = 8 if gentle_first else -8
-            self.d.text((p + side, py + dy), f"< {level:g} at {v:.3g}", fill=color,
-                        font=font(13), anchor="lt" if gentle_first else "rt")
+            self.labels.append(((p + side, py + dy), f"< {level:g} at {v:.3g}", color, 13,
+                                "lt" if gentle_first else "rt", WHITE))
 
     def marks(self, xs: Sequence[float], y: float, color: tuple[int, int, int], name: str,
               marker: str = "x") -> None:
@@ -378,7 +382,38 @@ class Chart:
         if xs:
             self.legend.append((name, color, marker))
 
+    def _place_labels(self) -> None:
+        """Draws the queued labels over everything plotted, each on a box of its
+        background's colour so that no line runs through its letters, moved up or down (in
+        the order queued, nearest free place first) off any label already placed, within the
+        main panel."""
+        placed = self.placed
+        pad = 2
+
+        def clashes(box: tuple[float, float, float, float]) -> bool:
+            return any(box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3]
+                       for b in placed)
+
+        for (x, y), text, color, size, anchor, back in self.labels:
+            f = font(size)
+            x0, y0, x1, y1 = self.d.textbbox((x, y), text, font=f, anchor=anchor)
+            box = (x0 - pad, y0 - pad, x1 + pad, y1 + pad)
+            step = box[3] - box[1]
+            for k in range(1, 12):
+                if not clashes(box):
+                    break
+                # 1, -1, 2, -2, ... boxes down and up from where it was asked for.
+                shift = step * ((k + 1) // 2) * (1 if k % 2 else -1)
+                moved = (box[0], box[1] + shift, box[2], box[3] + shift)
+                if moved[1] >= self.TOP and moved[3] <= self.MAIN_BOTTOM and not clashes(moved):
+                    box, y = moved, y + shift
+                    break
+            placed.append(box)
+            self.d.rectangle(box, fill=back)
+            self.d.text((x, y), text, fill=color, font=f, anchor=anchor)
+
     def save(self, path: Path) -> None:
+        self._place_labels()
         d, f = self.d, font(13)
         d.rectangle([self.LEFT, self.TOP, self.W - self.RIGHT, self.MAIN_BOTTOM], outline=INK)
         d.rectangle([self.LEFT, self.STRIP_TOP, self.W - self.RIGHT, self.STRIP_BOTTOM],

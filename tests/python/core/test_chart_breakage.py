@@ -90,6 +90,23 @@ def test_charts_are_drawn(charts: ModuleType, tmp_path: Path) -> None:
     assert (tmp_path / "yarn.png").stat().st_size > 1000
 
 
+def test_labels_do_not_overlap(charts: ModuleType, tmp_path: Path) -> None:
+    # Two series crossing 1.0 and 0.95 at nearly the same place, beside the reference lines'
+    # own labels: every label ends up clear of every other, inside the main panel.
+    c = charts.Chart("t", "x", (1.0, 100.0), True, (0.0, 1.4))
+    charts.acceptance_lines(c)
+    for ys in ([1.0, 0.9, 0.5], [1.01, 0.93, 0.4]):
+        c.crossings([1.0, 1.5, 3.0], ys, gentle_first=True)
+    c.hline(0.96, (0, 0, 0), "a third line's label")
+    c.save(tmp_path / "labels.png")
+    boxes = c.placed
+    assert len(boxes) == 7
+    for i, a in enumerate(boxes):
+        assert c.TOP <= a[1] and a[3] <= c.MAIN_BOTTOM, a
+        for b in boxes[i + 1:]:
+            assert not (a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]), (a, b)
+
+
 def test_coarse_sampling_costs_clearance_not_the_interlock(charts: ModuleType) -> None:
     # Chords through 6 samples a loop cut the loops' corners (0.68 diameters); the default
     # 16 clears the floor. Both keep every crossing in the knitted order (`check`).
