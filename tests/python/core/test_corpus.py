@@ -36,7 +36,7 @@ FLOORS: dict[str, tuple[float, float]] = {
     "broken-rib": (0.722, 0.716),
     "cable-4": (0.575, 0.603),
     "cable-6": (0.365, 0.348),
-    "cable-8": (0.303, 0.311),
+    "cable-8": (0.354, 0.407),
     "centre-cross": (0.430, 0.444),
     "diagonal-rib": (0.663, 0.778),
     "double-moss": (0.738, 0.775),
