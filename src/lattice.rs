@@ -175,7 +175,7 @@ impl Lattice {
     /// more than the perturbation can take away (heights of at least 0.5 against at most
     /// `12 kappa` = 0.24 rows at [`KAPPA_MAX`]).
     pub fn with_row_heights(mut self, heights: &RowHeights) -> Self {
-        let d = heights.node_displacements(self.courses, self.wales, self.cyclic_v);
+        let d = heights.node_displacements(self.courses, self.wales, self.cyclic_u, self.cyclic_v);
         let tile_v = self.tile.y;
         for (node, d) in self.nodes.iter_mut().zip(&d) {
             if *d != 0.0 {

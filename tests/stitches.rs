@@ -638,6 +638,22 @@ fn loops_leaning_three_columns_or_more_neither_curl_nor_cross_their_neighbours()
     }
 }
 
+/// The C6 preset on the 12 x 10 cm sheet ends two rows above a crossing (28 courses of an
+/// 8-row repeat): its cable columns are half a row over at the top, the purl columns beside
+/// them not at all. Ramped out alike, the purl columns' top stood half a row lower than the
+/// cables', in the one tile beside each cable, and the bind-off over that step curled over
+/// itself: 8 crossings of the chain with itself and a clearance of 0.181 diameters. A column
+/// no loop leans across now keeps regular rows up to the top (`RowHeights::leaning`): 0 and
+/// 0.450.
+#[test]
+fn a_cable_sheet_ending_inside_its_repeat_binds_off_without_curling() {
+    let pattern = StitchPattern::preset("cable_c6").unwrap();
+    let (clearance, order) = knitted_as_written_on_a_sheet(&pattern);
+    assert_eq!(order.undecided, 0);
+    assert_eq!((order.free_loops, order.free_feet), (0, 0));
+    assert!(clearance > 0.4, "{clearance}");
+}
+
 /// `pattern` knitted on a 12 x 10 cm sheet at default settings, with every crossing the
 /// right way round and more than 2,000 interlock crossings; its clearance and crossings.
 fn knitted_as_written_on_a_sheet(pattern: &StitchPattern) -> (f32, CrossingOrder) {

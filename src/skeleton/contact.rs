@@ -115,6 +115,7 @@ impl Patch {
             width,
             height,
             per_lean,
+            super::leaning_rows::Ramp::Alike,
         );
         let pieces = yarn_pieces(&lattice, &vec![true; courses * wales]);
         Patch {
@@ -147,6 +148,7 @@ impl Patch {
             width,
             height,
             per_lean,
+            super::leaning_rows::Ramp::Alike,
         );
         let built: Vec<bool> = (0..courses)
             .flat_map(|_| built_wales.iter().copied())

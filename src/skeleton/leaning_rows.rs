@@ -63,22 +63,31 @@ pub fn leaning_row_heights(
 /// ([`leaning_row_heights`]) repeated, one node column per node column of the lattice, except
 /// on the node lines of wales the piece knits straight ([`wale_knits_whole`]: its edge cuts
 /// a crossing or a decrease there), which take only what the piece's own loops need
-/// ([`landing`]): regular rows where nothing leans.
+/// ([`landing`]): regular rows where nothing leans. With `mark_leaning`, the heights also
+/// know which node columns leaning loops join ([`RowHeights::leaning`]).
 pub fn fabric_row_heights(
     lattice: &Lattice,
     pattern: &StitchPattern,
     width: f32,
     height: f32,
     per_lean: f32,
+    mark_leaning: bool,
 ) -> Option<RowHeights> {
     let (rows, cols) = (pattern.height(), pattern.width());
     let periodic = pattern_needs(pattern, width, height, per_lean)?;
+    let marked = |heights: RowHeights, cols: usize, need: &[f32]| {
+        if mark_leaning {
+            heights.leaning(leaning_columns(rows, cols, need))
+        } else {
+            Some(heights)
+        }
+    };
     let wales = lattice.wales;
     let straight: Vec<usize> = (0..wales)
         .filter(|&w| !wale_knits_whole(lattice, pattern, w))
         .collect();
     if straight.is_empty() {
-        return heights_from_needs(rows, cols, &periodic);
+        return marked(heights_from_needs(rows, cols, &periodic)?, cols, &periodic);
     }
     let node_cols = if lattice.cyclic_u { wales } else { wales + 1 };
     let own = needs(
@@ -100,7 +109,11 @@ pub fn fabric_row_heights(
             }
         }
     }
-    heights_from_needs(rows, node_cols, &need)
+    marked(
+        heights_from_needs(rows, node_cols, &need)?,
+        node_cols,
+        &need,
+    )
 }
 
 /// The height each (row, node column) of one repeat of `pattern` needs (see [`needs`]), or
@@ -188,19 +201,51 @@ fn heights_from_needs(rows: usize, cols: usize, need: &[f32]) -> Option<RowHeigh
     RowHeights::new(rows, cols, heights)
 }
 
+/// Per node column of `need` (`rows x cols`, see [`needs`]): whether a loop leans across it or
+/// stands on it in some row.
+fn leaning_columns(rows: usize, cols: usize, need: &[f32]) -> Vec<bool> {
+    (0..cols)
+        .map(|c| (0..rows).any(|r| need[r * cols + c] > 0.0))
+        .collect()
+}
+
+/// How a lattice whose courses end inside a repeat of rows ramps the remainder out
+/// ([`RowHeights::node_displacements`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ramp {
+    /// Every column alike: the patches and strips the loop shapes are tuned and relieved on,
+    /// which only stand for the body of the fabric.
+    Alike,
+    /// By blocks of the node columns that leaning loops join ([`RowHeights::leaning`]): a
+    /// piece's own lattice, where a column no loop leans across keeps regular rows up to its
+    /// top, level with the cable beside it, and the bind-off runs flat over it. Its body's
+    /// tiles are those of [`Ramp::Alike`] up to a shear of the remainder (at most a row)
+    /// spread over all its courses.
+    ByBlock,
+}
+
 /// `lattice` with the row heights `pattern` asks for at stitches `width x height` diameters
-/// and `per_lean` (see [`leaning_row_heights`]).
+/// and `per_lean` (see [`leaning_row_heights`]), the remainder of a repeat ramped out as
+/// `ramp` says (a window's always alike).
 pub fn shaped(
     lattice: Lattice,
     pattern: &StitchPattern,
     width: f32,
     height: f32,
     per_lean: f32,
+    ramp: Ramp,
 ) -> Lattice {
     let heights = if lattice.window {
         leaning_row_heights(pattern, width, height, per_lean)
     } else {
-        fabric_row_heights(&lattice, pattern, width, height, per_lean)
+        fabric_row_heights(
+            &lattice,
+            pattern,
+            width,
+            height,
+            per_lean,
+            ramp == Ramp::ByBlock,
+        )
     };
     match heights {
         Some(h) => lattice.with_row_heights(&h),
@@ -231,7 +276,7 @@ mod tests {
         let cut = lattice(24, false);
         assert!((0..18).all(|x| wale_knits_whole(&cut, &pattern, x)));
         assert!((18..24).all(|x| !wale_knits_whole(&cut, &pattern, x)));
-        let fabric = fabric_row_heights(&cut, &pattern, w, h, k).unwrap();
+        let fabric = fabric_row_heights(&cut, &pattern, w, h, k, true).unwrap();
         for r in 0..pattern.height() {
             // The node lines of the whole repeat's wales keep the pattern's heights (line 18
             // borders a cut wale and takes only what the whole repeat's loops need there).
@@ -246,7 +291,7 @@ mod tests {
         // Whole repeats (here round a tube): the pattern's heights, repeated.
         let whole = lattice(36, true);
         assert!((0..36).all(|x| wale_knits_whole(&whole, &pattern, x)));
-        let fabric = fabric_row_heights(&whole, &pattern, w, h, k).unwrap();
+        let fabric = fabric_row_heights(&whole, &pattern, w, h, k, true).unwrap();
         for r in 0..pattern.height() {
             for c in 0..36 {
                 assert_eq!(fabric.height(r, c), own.height(r, c % 18));

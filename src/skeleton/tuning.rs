@@ -514,6 +514,7 @@ fn patch_measure(
         width,
         height,
         per_lean,
+        super::leaning_rows::Ramp::Alike,
     );
     let built = vec![true; courses * wales];
     let pieces = yarn_pieces(&lattice, &built);

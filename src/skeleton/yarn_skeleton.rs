@@ -76,7 +76,14 @@ impl YarnSkeleton {
             )
         };
         let (width_d, height_d) = tuning::proportions(width, height, diameter);
-        let lattice = leaning_rows::shaped(base, pattern, width_d, height_d, per_lean);
+        let lattice = leaning_rows::shaped(
+            base,
+            pattern,
+            width_d,
+            height_d,
+            per_lean,
+            leaning_rows::Ramp::ByBlock,
+        );
         Self {
             lattice,
             offsets,
