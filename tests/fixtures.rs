@@ -276,14 +276,39 @@ fn uv_sphere(segments: usize, rings: usize, radius: f32) -> Mesh {
     m
 }
 
+/// The pole fans leave gaps between their triangles in UV, which are no gaps in 3D: they
+/// are closed (`surface::pole_fans`), and the courses run round the poles whole. Left open,
+/// 212 stitches of this sphere's 1,848 had no surface under them and the courses round the
+/// poles broke into single stitches, each finished as a little ring. What is still skipped
+/// lies where the UV map's seam cuts the last teeth in half, beside its sides.
 #[test]
 fn uv_sphere_poles() {
-    let sphere = uv_sphere(32, 16, 0.05).surface().unwrap();
+    let (segments, rings) = (32, 16);
+    let mesh = uv_sphere(segments, rings, 0.05);
+    let sphere = mesh.surface().unwrap();
+    // A point in the gap between two teeth lies on the edge they share, between the pole
+    // and their ring vertex (3D): here half-way down the gap's middle line.
+    let north = Vec3::new(0.0, 0.0, 0.05);
+    let gap = Vec2::new(1.0 / segments as f32, 1.0 - 0.5 / rings as f32);
+    let at = sphere
+        .eval(gap)
+        .expect("a point between two teeth is on the surface");
+    let lat = PI / 2.0 - PI / rings as f32;
+    let ring = 0.05
+        * Vec3::new(
+            lat.cos() * (TAU / segments as f32).cos(),
+            lat.cos() * (TAU / segments as f32).sin(),
+            lat.sin(),
+        );
+    let along = (at.position - north).cross(ring - north).length();
+    assert!(along < 1e-6, "{:?} is off the edge by {along}", at.position);
     let (out, _) = knit_ok("uv sphere (pole fans)", &sphere, &params());
-    // The pole fans leave gaps between their triangles in UV: stitches there are skipped, and
-    // counted.
-    assert!(out.stats.stitches_skipped > 0, "{:?}", out.stats);
-    assert!(out.stats.stitches > out.stats.stitches_skipped * 4);
+    let total = out.stats.stitches + out.stats.stitches_skipped;
+    assert!(
+        out.stats.stitches_skipped * 100 < total,
+        "{} of {total} stitches skipped",
+        out.stats.stitches_skipped
+    );
 }
 
 /// A cone, 5 cm round at the base, pinched to an apex at v = 1 (the normals there are the

@@ -4,6 +4,7 @@
 
 use glam::{DVec3, Vec2, Vec3};
 
+use super::pole_fans::{pole_fillers, FanTriangle};
 use super::{Surface, SurfacePoint, UvRect};
 use crate::error::{KnitError, Result};
 
@@ -36,6 +37,27 @@ struct BaryMap {
 }
 
 impl BaryMap {
+    /// The map of the UV triangle `uv`, with the inverse (row-major, f64) and the determinant
+    /// of its edge matrix; `None` for a degenerate UV triangle ([`DEGENERATE_UV_RATIO`]).
+    fn of(uv: [Vec2; 3]) -> Option<(Self, [f64; 4], f64)> {
+        let [a, b, c] = uv.map(|p| p.as_dvec2());
+        let (e1, e2) = (b - a, c - a);
+        let det = e1.perp_dot(e2);
+        let longest = e1
+            .length_squared()
+            .max(e2.length_squared())
+            .max((c - b).length_squared());
+        if det.abs() <= DEGENERATE_UV_RATIO * longest || !det.is_normal() {
+            return None;
+        }
+        let inv = [e2.y / det, -e2.x / det, -e1.y / det, e1.x / det];
+        let map = BaryMap {
+            origin: uv[0],
+            inv: inv.map(|x| x as f32),
+        };
+        Some((map, inv, det))
+    }
+
     #[inline]
     fn barycentrics(&self, uv: Vec2) -> [f32; 3] {
         let d = uv - self.origin;
@@ -56,7 +78,8 @@ struct Corners {
 /// The rest of a lookup triangle (read rarely: nearest-point search, fallback normals).
 #[derive(Debug, Clone, Copy)]
 struct LookupTri {
-    /// Index of the triangle in the input buffers.
+    /// Index of the triangle in the input buffers (of a pole fan's filler: the first tooth it
+    /// joins).
     index: u32,
     uv: [Vec2; 3],
     /// Unit normal used where the interpolated vertex normals cancel: the geometric normal
@@ -72,7 +95,8 @@ pub struct MeshSurface {
     vertex_count: usize,
     triangle_count: usize,
     /// Triangles with UV area ("lookup triangles"), in input order (ascending
-    /// `LookupTri::index`); the three arrays are parallel. Hot data (what a lookup and an
+    /// `LookupTri::index`), then the fillers that close the gaps of pole fans
+    /// ([`super::pole_fans`]); the three arrays are parallel. Hot data (what a lookup and an
     /// interpolation read) apart from cold: 136 bytes per triangle, plus about 24 in the
     /// index.
     bary: Vec<BaryMap>,
@@ -178,6 +202,7 @@ impl MeshSurface {
 
         let mut bary = Vec::new();
         let mut tris = Vec::new();
+        let mut fan = Vec::new();
         let mut corners = Vec::new();
         let (mut lo, mut hi) = (Vec2::MAX, Vec2::MIN);
         // Extent: UV-area-weighted sums of |ds/du| and |ds/dv| (docs/design.md section 2: gauge
@@ -186,21 +211,10 @@ impl MeshSurface {
         for t in 0..m {
             let vertices = [triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2]];
             let uv = [0, 1, 2].map(|c| Vec2::new(uvs[6 * t + 2 * c], uvs[6 * t + 2 * c + 1]));
-            let [a, b, c] = uv.map(|p| p.as_dvec2());
-            let (e1, e2) = (b - a, c - a);
-            let det = e1.perp_dot(e2);
-            let longest = e1
-                .length_squared()
-                .max(e2.length_squared())
-                .max((c - b).length_squared());
-            if det.abs() <= DEGENERATE_UV_RATIO * longest || !det.is_normal() {
+            let Some((map, inv, det)) = BaryMap::of(uv) else {
                 continue;
-            }
-            let inv = [e2.y / det, -e2.x / det, -e1.y / det, e1.x / det];
-            bary.push(BaryMap {
-                origin: uv[0],
-                inv: inv.map(|x| x as f32),
-            });
+            };
+            bary.push(map);
 
             let p = vertices.map(|i| positions[i as usize]);
             let vn = vertices.map(|i| normals[i as usize]);
@@ -214,6 +228,11 @@ impl MeshSurface {
                 index: t as u32,
                 uv,
                 fallback_normal,
+            });
+            fan.push(FanTriangle {
+                index: t as u32,
+                vertices,
+                uv,
             });
             corners.push(Corners {
                 position: p,
@@ -240,6 +259,28 @@ impl MeshSurface {
             ));
         }
         let domain = UvRect { min: lo, max: hi };
+        // The gaps between a pole fan's teeth (`super::pole_fans`), after every triangle of
+        // the mesh, so that where one overlaps a triangle of the mesh the triangle wins. They
+        // lie inside the domain and take no part in the extent: they map their UV area onto
+        // an edge of the mesh.
+        for f in pole_fillers(&fan, domain) {
+            let Some((map, _, _)) = BaryMap::of(f.uv) else {
+                continue;
+            };
+            bary.push(map);
+            let vn = f.vertices.map(|i| normals[i as usize]);
+            tris.push(LookupTri {
+                index: f.extends,
+                uv: f.uv,
+                fallback_normal: (vn[0] + vn[1] + vn[2])
+                    .try_normalize()
+                    .unwrap_or(mesh_normal),
+            });
+            corners.push(Corners {
+                position: f.vertices.map(|i| positions[i as usize]),
+                normal: vn,
+            });
+        }
         let size = domain.size();
         let extent = (
             (sum_du / weight * f64::from(size.x)) as f32,

@@ -10,6 +10,7 @@
 mod grid;
 mod mesh;
 mod plane;
+mod pole_fans;
 
 pub use grid::GridSurface;
 pub use mesh::MeshSurface;

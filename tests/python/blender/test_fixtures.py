@@ -44,9 +44,11 @@ def test_cube_six_uv_islands_skips_and_reports(api: ModuleType, addon: ModuleTyp
 def test_uv_sphere_poles(api: ModuleType, addon: ModuleType) -> None:
     bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12, radius=0.1)
     outcome, _ = _knit_ok(api, addon, bpy.context.active_object, courses=20, wales=30)
-    # The pole fans leave UV gaps between their triangles: counted, not hidden.
+    # The pole fans leave UV gaps between their triangles, which are no gaps in 3D: they are
+    # closed and the courses run round the poles. What is skipped is counted: the halves of
+    # the first and last teeth that the UV map's seam cuts.
     assert outcome.stitches + outcome.skipped_stitches == 20 * 30
-    assert outcome.stitches > 0.8 * 20 * 30
+    assert outcome.skipped_stitches <= 0.02 * 20 * 30, outcome.skipped_stitches
 
 
 def test_thin_tube_is_flattened_and_reported(api: ModuleType, addon: ModuleType) -> None:
