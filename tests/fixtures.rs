@@ -302,13 +302,13 @@ fn uv_sphere_poles() {
         );
     let along = (at.position - north).cross(ring - north).length();
     assert!(along < 1e-6, "{:?} is off the edge by {along}", at.position);
+    // The map closes round its seam, and so does the gap between the first tooth and the
+    // last, in two halves (one at each side of the map): no stitch is lost at the poles and
+    // every course runs whole round the sphere.
+    assert!(sphere.cyclic_u() && !sphere.cyclic_v());
     let (out, _) = knit_ok("uv sphere (pole fans)", &sphere, &params());
-    let total = out.stats.stitches + out.stats.stitches_skipped;
-    assert!(
-        out.stats.stitches_skipped * 100 < total,
-        "{} of {total} stitches skipped",
-        out.stats.stitches_skipped
-    );
+    assert_eq!(out.stats.stitches_skipped, 0);
+    assert!(out.yarn_closed.iter().all(|&closed| closed));
 }
 
 /// A cone, 5 cm round at the base, pinched to an apex at v = 1 (the normals there are the
@@ -422,7 +422,10 @@ fn overlapping_uvs() {
     assert!(out.centerline.chunks_exact(3).all(|q| q[0] < 0.2));
 }
 
-/// A tube cut open along a UV seam (the seam vertices doubled, UVs from 0 to 1 round it).
+/// A tube cut open along a UV seam (the seam vertices doubled, UVs from 0 to 1 round it) is
+/// knitted in the round: every course, the cast-on and the bind-off close on themselves
+/// across the seam, as they would on a tube knitted on circular needles (before, the tube
+/// was knitted flat, with yarn ends and a gap of about a stitch column along the seam).
 #[test]
 fn uv_seam_on_a_tube() {
     let m = Mesh::sheet(
@@ -434,9 +437,25 @@ fn uv_seam_on_a_tube() {
         },
         Vec2::new,
     );
-    let (out, c) = knit_ok("tube with a UV seam", &m.surface().unwrap(), &params());
+    let tube = m.surface().unwrap();
+    assert!(tube.cyclic_u() && !tube.cyclic_v());
+    let (out, c) = knit_ok("tube with a UV seam", &tube, &params());
     assert_eq!(out.stats.stitches_skipped, 0);
     assert!(c.0 > COARSE_FLOOR, "{c:?}");
+    assert_eq!(out.yarn_closed.len(), out.stats.courses + 2);
+    assert!(
+        out.yarn_closed.iter().all(|&closed| closed),
+        "{:?}",
+        out.yarn_closed
+    );
+    // The same sheet unrolled flat (its two sides 6 cm apart) stays a flat piece.
+    let flat = Mesh::sheet(
+        24,
+        |u, v| (Vec3::new(0.12 * u, 0.06 * v, 0.0), Vec3::Z),
+        Vec2::new,
+    );
+    let (out, _) = knit_ok("sheet", &flat.surface().unwrap(), &params());
+    assert!(out.yarn_closed.iter().all(|&closed| !closed));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -98,6 +98,11 @@ class MeshSurface:
     def domain(self) -> tuple[tuple[float, float], tuple[float, float]]:
         """The UV map's bounding box ((u_min, v_min), (u_max, v_max)): what a knit and a
         knit texture cover."""
+    @property
+    def cyclic(self) -> tuple[bool, bool]:
+        """Whether the UV map closes round along u and along v: a seam along the two sides
+        of its bounding box whose edges are one in 3D (a tube). A closed direction is
+        knitted in the round."""
 
 @final
 class Pattern:

@@ -96,6 +96,13 @@ impl PyMeshSurface {
         let d = self.inner.domain();
         (d.min.into(), d.max.into())
     }
+
+    /// Whether the UV map closes round along u and along v (a tube's seam): `(u, v)`. A
+    /// closed direction is knitted in the round.
+    #[getter]
+    fn cyclic(&self) -> (bool, bool) {
+        (self.inner.cyclic_u(), self.inner.cyclic_v())
+    }
 }
 
 pub(crate) enum AnySurface {

@@ -5,6 +5,7 @@
 use glam::{DVec3, Vec2, Vec3};
 
 use super::pole_fans::{pole_fillers, FanTriangle};
+use super::uv_seams::{closed_seams, SeamTriangle};
 use super::{Surface, SurfacePoint, UvRect};
 use crate::error::{KnitError, Result};
 
@@ -103,6 +104,9 @@ pub struct MeshSurface {
     corners: Vec<Corners>,
     tris: Vec<LookupTri>,
     domain: UvRect,
+    /// Whether the UV map closes round along u and along v ([`super::uv_seams`]): lookups
+    /// then take a (u,v) beyond the domain back into it by whole widths.
+    cyclic: (bool, bool),
     extent: (f32, f32),
     /// The uniform grid over `domain`: `nx x ny` cells, row-major; cell `c` holds the lookup
     /// triangles `cell_tris[cell_start[c]..cell_start[c + 1]]`, ascending.
@@ -259,11 +263,19 @@ impl MeshSurface {
             ));
         }
         let domain = UvRect { min: lo, max: hi };
+        let seam_triangles: Vec<SeamTriangle> = fan
+            .iter()
+            .map(|f| SeamTriangle {
+                vertices: f.vertices,
+                uv: f.uv,
+            })
+            .collect();
+        let cyclic = closed_seams(&seam_triangles, &positions, domain);
         // The gaps between a pole fan's teeth (`super::pole_fans`), after every triangle of
         // the mesh, so that where one overlaps a triangle of the mesh the triangle wins. They
         // lie inside the domain and take no part in the extent: they map their UV area onto
         // an edge of the mesh.
-        for f in pole_fillers(&fan, domain) {
+        for f in pole_fillers(&fan, domain, cyclic) {
             let Some((map, _, _)) = BaryMap::of(f.uv) else {
                 continue;
             };
@@ -306,6 +318,7 @@ impl MeshSurface {
             corners,
             tris,
             domain,
+            cyclic,
             extent,
             nx: 1,
             ny: 1,
@@ -380,6 +393,24 @@ impl MeshSurface {
         Vec2::new(
             fix(uv.x, centre.x, lo.x, hi.x),
             fix(uv.y, centre.y, lo.y, hi.y),
+        )
+    }
+
+    /// `uv` taken back into the domain by whole widths along each axis that closes round (a
+    /// coordinate already inside, or not finite, is left as it is).
+    #[inline]
+    fn wrap(&self, uv: Vec2) -> Vec2 {
+        let (lo, hi) = (self.domain.min, self.domain.max);
+        let back = |x: f32, lo: f32, hi: f32, cyclic: bool| {
+            if cyclic && x.is_finite() && (x < lo || x > hi) {
+                lo + (x - lo).rem_euclid(hi - lo)
+            } else {
+                x
+            }
+        };
+        Vec2::new(
+            back(uv.x, lo.x, hi.x, self.cyclic.0),
+            back(uv.y, lo.y, hi.y, self.cyclic.1),
         )
     }
 
@@ -474,6 +505,7 @@ impl MeshSurface {
     /// The lookup triangle containing `uv` and its barycentrics (see [`MeshSurface::locate`]).
     #[inline]
     fn find(&self, uv: Vec2) -> Option<(usize, [f32; 3])> {
+        let uv = self.wrap(uv);
         let (lo, hi) = (self.domain.min, self.domain.max);
         let tol = self.uv_tolerance;
         // Also rejects NaN.
@@ -521,6 +553,7 @@ impl MeshSurface {
     /// cells around `uv`, stopping once no unvisited cell can hold anything closer; at most
     /// the whole grid.
     fn nearest(&self, uv: Vec2) -> (usize, [f32; 3]) {
+        let uv = self.wrap(uv);
         let (cx, cy) = self.cell_of(uv);
         let (nx, ny) = (self.nx as isize, self.ny as isize);
         let (cx, cy) = (cx as isize, cy as isize);
@@ -619,11 +652,11 @@ impl Surface for MeshSurface {
     }
 
     fn cyclic_u(&self) -> bool {
-        false
+        self.cyclic.0
     }
 
     fn cyclic_v(&self) -> bool {
-        false
+        self.cyclic.1
     }
 
     #[inline]

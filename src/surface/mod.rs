@@ -11,6 +11,7 @@ mod grid;
 mod mesh;
 mod plane;
 mod pole_fans;
+mod uv_seams;
 
 pub use grid::GridSurface;
 pub use mesh::MeshSurface;

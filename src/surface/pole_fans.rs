@@ -43,13 +43,26 @@ pub(super) struct Filler {
 /// (u,v) it gives the pole and the ring vertex.
 type Tooth = (u32, Vec2, Vec2);
 
+/// How far (as a fraction of the UV box's size) a seam's two (u,v) of one ring vertex may be
+/// off one box width apart: [`super::uv_seams`]'s tolerance.
+const SEAM_TOLERANCE: f32 = super::uv_seams::UV_TOLERANCE;
+
 /// Fewest distinct (u,v) a pole vertex takes (a fan of three teeth).
 const MIN_TEETH: usize = 3;
 
 /// The fillers that close the gaps of every pole fan among `triangles` (those with UV area,
 /// in input order) of a UV map whose bounding box is `domain`. Deterministic: sorted by the
 /// teeth's input indices.
-pub(super) fn pole_fillers(triangles: &[FanTriangle], domain: UvRect) -> Vec<Filler> {
+///
+/// Where the map closes round along an axis (`closed`, [`super::uv_seams`]), the gap across
+/// its seam is closed too: the first and the last tooth give their common ring vertex (u,v)
+/// one domain width apart, and the gap between them is cut by the seam into two halves, one
+/// at each side of the map, each running from its tooth to the side (3D: the same edge).
+pub(super) fn pole_fillers(
+    triangles: &[FanTriangle],
+    domain: UvRect,
+    closed: (bool, bool),
+) -> Vec<Filler> {
     let key = |uv: Vec2| (uv.x.to_bits(), uv.y.to_bits());
     // Every (u,v) each vertex takes.
     let mut corners: BTreeMap<u32, Vec<Vec2>> = BTreeMap::new();
@@ -92,20 +105,60 @@ pub(super) fn pole_fillers(triangles: &[FanTriangle], domain: UvRect) -> Vec<Fil
             }
         }
     }
-    let mut fillers: Vec<Filler> = spokes
-        .into_iter()
-        .filter_map(|((pole, ring), teeth)| {
-            let [(a, pole_a, ring_a), (b, pole_b, ring_b)] = teeth[..] else {
-                return None;
-            };
-            // The same (u,v) at the ring vertex, another at the pole: a gap between teeth.
-            (key(ring_a) == key(ring_b) && key(pole_a) != key(pole_b)).then_some(Filler {
+    let size = domain.size();
+    let mut fillers: Vec<Filler> = Vec::new();
+    for ((pole, ring), teeth) in spokes {
+        let [(a, pole_a, ring_a), (b, pole_b, ring_b)] = teeth[..] else {
+            continue;
+        };
+        if key(pole_a) == key(pole_b) {
+            continue;
+        }
+        // The same (u,v) at the ring vertex, another at the pole: a gap between teeth.
+        if key(ring_a) == key(ring_b) {
+            fillers.push(Filler {
                 extends: a.min(b),
                 vertices: [pole, ring, pole],
                 uv: [pole_a, ring_a, pole_b],
-            })
-        })
-        .collect();
+            });
+            continue;
+        }
+        // The ring vertex on the seam: one width apart along a closed axis, at the same
+        // place along the other.
+        for axis in 0..2 {
+            let open = if axis == 0 { !closed.0 } else { !closed.1 };
+            let along = 1 - axis;
+            let near = |x: f32, y: f32, scale: f32| (x - y).abs() <= SEAM_TOLERANCE * scale;
+            if open
+                || !near(ring_a[along], ring_b[along], size[along])
+                || !near((ring_a[axis] - ring_b[axis]).abs(), size[axis], size[axis])
+            {
+                continue;
+            }
+            // Each tooth's half: from its pole corner to the side its ring vertex lies on,
+            // turning the same way round the pole as a whole gap does (pole, ring, pole).
+            let (first, second) = if ring_a[axis] < ring_b[axis] {
+                ((b, pole_b, ring_b), (a, pole_a, ring_a))
+            } else {
+                ((a, pole_a, ring_a), (b, pole_b, ring_b))
+            };
+            let side = |(_, pole_uv, ring_uv): Tooth| {
+                let mut p = pole_uv;
+                p[axis] = ring_uv[axis];
+                p
+            };
+            fillers.push(Filler {
+                extends: first.0,
+                vertices: [pole, ring, pole],
+                uv: [first.1, first.2, side(first)],
+            });
+            fillers.push(Filler {
+                extends: second.0,
+                vertices: [pole, ring, pole],
+                uv: [side(second), second.2, second.1],
+            });
+        }
+    }
     fillers.sort_by_key(|f| (f.extends, f.vertices[1]));
     fillers
 }
@@ -135,7 +188,7 @@ mod tests {
     #[test]
     fn a_pole_fan_gets_one_filler_between_each_two_teeth() {
         let fan: Vec<FanTriangle> = (0..4).map(|s| tooth(s, s, 4)).collect();
-        let fillers = pole_fillers(&fan, DOMAIN);
+        let fillers = pole_fillers(&fan, DOMAIN, (false, false));
         // Four teeth round the pole (vertex 0); the seam between the last and the first
         // (ring vertex 1 at u = 0 and at u = 1) stays open.
         assert_eq!(fillers.len(), 3);
@@ -153,6 +206,35 @@ mod tests {
     }
 
     #[test]
+    fn a_map_closed_round_its_seam_closes_the_gap_across_it_in_two_halves() {
+        let fan: Vec<FanTriangle> = (0..4).map(|s| tooth(s, s, 4)).collect();
+        let fillers = pole_fillers(&fan, DOMAIN, (true, false));
+        assert_eq!(fillers.len(), 5);
+        let across: Vec<&Filler> = fillers.iter().filter(|f| f.vertices[1] == 1).collect();
+        // Ring vertex 1 is at u = 0 in the first tooth and at u = 1 in the last: each half
+        // runs from its tooth's pole corner to the side of the map.
+        assert_eq!(across.len(), 2);
+        assert_eq!((across[0].extends, across[1].extends), (0, 3));
+        assert_eq!(
+            across[0].uv,
+            [
+                Vec2::new(0.0, 1.0),
+                Vec2::new(0.0, 0.5),
+                Vec2::new(0.125, 1.0)
+            ]
+        );
+        assert_eq!(
+            across[1].uv,
+            [
+                Vec2::new(0.875, 1.0),
+                Vec2::new(1.0, 0.5),
+                Vec2::new(1.0, 1.0)
+            ]
+        );
+        assert!(across.iter().all(|f| f.vertices == [0, 1, 0]));
+    }
+
+    #[test]
     fn a_vertex_off_the_maps_edge_is_no_pole() {
         // The same fan with its pole row below the top of the map: no pole.
         let fan: Vec<FanTriangle> = (0..4).map(|s| tooth(s, s, 4)).collect();
@@ -160,6 +242,6 @@ mod tests {
             min: Vec2::ZERO,
             max: Vec2::new(1.0, 2.0),
         };
-        assert!(pole_fillers(&fan, taller).is_empty());
+        assert!(pole_fillers(&fan, taller, (false, false)).is_empty());
     }
 }

@@ -45,10 +45,25 @@ def test_uv_sphere_poles(api: ModuleType, addon: ModuleType) -> None:
     bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12, radius=0.1)
     outcome, _ = _knit_ok(api, addon, bpy.context.active_object, courses=20, wales=30)
     # The pole fans leave UV gaps between their triangles, which are no gaps in 3D: they are
-    # closed and the courses run round the poles. What is skipped is counted: the halves of
-    # the first and last teeth that the UV map's seam cuts.
-    assert outcome.stitches + outcome.skipped_stitches == 20 * 30
-    assert outcome.skipped_stitches <= 0.02 * 20 * 30, outcome.skipped_stitches
+    # closed, the UV seam closes round too, and the courses run whole round the poles.
+    assert outcome.stitches == 20 * 30
+    assert outcome.skipped_stitches == 0
+
+
+def test_a_tube_is_knitted_in_the_round_across_its_uv_seam(api: ModuleType) -> None:
+    """Issue 23: a cylinder (a sleeve) is closed in 3D across its UV seam, so it is knitted
+    in the round: every course, the cast-on and the bind-off close on themselves, with no
+    yarn ends and no column lost at the seam. A plane's sides stay selvages."""
+    bpy.ops.mesh.primitive_cylinder_add(
+        vertices=32, radius=0.05, depth=0.2, end_fill_type="NOTHING"
+    )
+    tube = api.knit_result(bpy.context.active_object, **(SMALL | {"courses": 24, "wales": 30}))
+    assert tube.stats["stitches"] == 24 * 30
+    assert len(tube.yarn_closed) == 24 + 2
+    assert tube.yarn_closed.all()
+    bpy.ops.mesh.primitive_plane_add(size=0.2)
+    sheet = api.knit_result(bpy.context.active_object, **(SMALL | {"courses": 24, "wales": 30}))
+    assert not sheet.yarn_closed.any()
 
 
 def test_thin_tube_is_flattened_and_reported(api: ModuleType, addon: ModuleType) -> None:
