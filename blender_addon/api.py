@@ -120,6 +120,9 @@ class KnitOutcome:
     #: (`stats["stitch_spread"]`: "width" and "height" as 5th and 95th percentiles over the
     #: mean, and the share of "stretched" stitches); None where it was not measured.
     stitch_spread: dict[str, Any] | None = None
+    #: Whether the fabric closes round along u and along v (`stats["in_the_round"]`): a
+    #: closed NURBS surface, or a mesh whose UV seam closes it, is knitted in the round.
+    in_the_round: tuple[bool, bool] = (False, False)
 
     @property
     def uneven(self) -> bool:
@@ -500,6 +503,7 @@ def _outcome(
         auto_detail=bound.levels is not None,
         texture_material=texture_material,
         stitch_spread=stats.get("stitch_spread"),
+        in_the_round=tuple(stats["in_the_round"]),
     )
 
 

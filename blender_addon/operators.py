@@ -47,6 +47,9 @@ def _summary(outcome: api.KnitOutcome) -> str:
         f"in {outcome.seconds:.2f} s"
     )
     notes = []
+    if any(outcome.in_the_round):
+        # A mesh's UV seam closes it round, or a NURBS surface is closed: no seam is sewn.
+        notes.append("knitted in the round")
     if outcome.auto_detail:
         lv = outcome.levels
         saved = outcome.triangles_full_detail - outcome.triangles

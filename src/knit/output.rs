@@ -25,6 +25,9 @@ pub struct KnitStats {
     pub vertices: usize,
     pub triangles: usize,
     pub yarn_pieces: usize,
+    /// Whether the fabric closes round along u and along v: knitted in the round (a closed
+    /// NURBS surface, or a mesh whose UV seam closes it: [`crate::surface::MeshSurface`]).
+    pub in_the_round: (bool, bool),
     /// Stitch width and height measured on the surface (scene units).
     pub stitch_width: f32,
     pub stitch_height: f32,

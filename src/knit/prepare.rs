@@ -377,6 +377,7 @@ impl PreparedKnit {
             vertices: total.vertices as usize,
             triangles: total.triangles as usize,
             yarn_pieces: pieces.len(),
+            in_the_round: cyclic,
             stitch_width,
             stitch_height,
             stitch_spread,

@@ -72,6 +72,7 @@ pub(crate) fn to_result(py: Python<'_>, out: KnitOutput) -> PyResult<PyKnitResul
     stats.set_item("vertices", s.vertices)?;
     stats.set_item("triangles", s.triangles)?;
     stats.set_item("yarn_pieces", s.yarn_pieces)?;
+    stats.set_item("in_the_round", s.in_the_round)?;
     stats.set_item("stitch_width", s.stitch_width)?;
     stats.set_item("stitch_height", s.stitch_height)?;
     let spread = match s.stitch_spread {

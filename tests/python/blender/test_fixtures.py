@@ -50,7 +50,9 @@ def test_uv_sphere_poles(api: ModuleType, addon: ModuleType) -> None:
     assert outcome.skipped_stitches == 0
 
 
-def test_a_tube_is_knitted_in_the_round_across_its_uv_seam(api: ModuleType) -> None:
+def test_a_tube_is_knitted_in_the_round_across_its_uv_seam(
+    api: ModuleType, addon: ModuleType
+) -> None:
     """Issue 23: a cylinder (a sleeve) is closed in 3D across its UV seam, so it is knitted
     in the round: every course, the cast-on and the bind-off close on themselves, with no
     yarn ends and no column lost at the seam. A plane's sides stay selvages."""
@@ -61,9 +63,16 @@ def test_a_tube_is_knitted_in_the_round_across_its_uv_seam(api: ModuleType) -> N
     assert tube.stats["stitches"] == 24 * 30
     assert len(tube.yarn_closed) == 24 + 2
     assert tube.yarn_closed.all()
+    assert tube.stats["in_the_round"] == (True, False)
+    outcome, summary = _knit_ok(api, addon, bpy.context.active_object, courses=24, wales=30)
+    assert outcome.in_the_round == (True, False)
+    assert "knitted in the round" in summary
     bpy.ops.mesh.primitive_plane_add(size=0.2)
     sheet = api.knit_result(bpy.context.active_object, **(SMALL | {"courses": 24, "wales": 30}))
     assert not sheet.yarn_closed.any()
+    assert "in the round" not in addon.operators._summary(
+        api.knit(bpy.context.active_object, **SMALL)
+    )
 
 
 def test_thin_tube_is_flattened_and_reported(api: ModuleType, addon: ModuleType) -> None:

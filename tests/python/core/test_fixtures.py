@@ -249,6 +249,7 @@ def test_a_mesh_closed_across_its_uv_seam_is_knitted_in_the_round() -> None:
     result = knitwear.knit(tube, knitwear.Pattern.preset("rib_2x2"), ring_segments=4)
     assert result.stats["stitches_skipped"] == 0
     assert result.yarn_closed.all()
+    assert result.stats["in_the_round"] == (True, False)
     # Knitted in the round from the gauge, the stitches round the tube are whole repeats.
     assert result.stats["wales"] % 4 == 0
     # A seam whose sides meet at other heights is no pure shift of the UV map: open.
