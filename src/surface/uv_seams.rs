@@ -99,8 +99,21 @@ fn closes(
     if low.is_empty() || low.len() != high.len() {
         return false;
     }
+    // In order along the side; edges at the same place (two shells sharing one UV map, as a
+    // Solidify modifier makes them) in order of their 3D ends, so that twins pair up.
+    let key = |e: &SideEdge| {
+        let [a, b] = e.1;
+        [e.0[0], e.0[1], a.x, a.y, a.z, b.x, b.y, b.z]
+    };
     for side in [&mut *low, &mut *high] {
-        side.sort_by(|x, y| x.0[0].total_cmp(&y.0[0]).then(x.0[1].total_cmp(&y.0[1])));
+        side.sort_by(|x, y| {
+            key(x)
+                .iter()
+                .zip(key(y).iter())
+                .map(|(p, q)| p.total_cmp(q))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
     }
     low.iter().zip(high.iter()).all(|(l, h)| {
         (0..2).all(|e| (l.0[e] - h.0[e]).abs() <= across && l.1[e].distance(h.1[e]) <= reach)
@@ -175,6 +188,35 @@ mod tests {
                 "{doubled}"
             );
         }
+    }
+
+    #[test]
+    fn two_shells_sharing_one_uv_map_close_round_together() {
+        // A Solidify modifier's inner shell: the same map, every position scaled in x and y.
+        let (outer, p) = tube(8, false, 0.0);
+        let shift = p.len() as u32;
+        let inner: Vec<SeamTriangle> = outer
+            .iter()
+            .map(|t| SeamTriangle {
+                vertices: t.vertices.map(|v| v + shift),
+                uv: t.uv,
+            })
+            .collect();
+        // Listed so that the inner shell's edge comes first on the map's left side and last
+        // on its right.
+        let half = inner.len() / 2;
+        let triangles: Vec<SeamTriangle> = inner[..half]
+            .iter()
+            .chain(&outer)
+            .chain(&inner[half..])
+            .copied()
+            .collect();
+        let shrunk = p.iter().map(|q| Vec3::new(0.9 * q.x, 0.9 * q.y, q.z));
+        let positions: Vec<Vec3> = p.iter().copied().chain(shrunk).collect();
+        assert_eq!(
+            closed_seams(&triangles, &positions, domain_of(&triangles)),
+            (true, false)
+        );
     }
 
     #[test]
