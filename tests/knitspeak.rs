@@ -470,6 +470,36 @@ fn repeats_groups_counts_and_spelling() {
         chart(titled),
         chart("Row 1 (RS): *k1, p1; rep from *.\nRow 2: *p1, k1; rep from *.")
     );
+    // Issue 17, the dialect: a row that says to work another row again is that row's
+    // instructions, worked on its own side (here moss stitch, rows 3 and 4 as rows 2 and 1).
+    let moss = "Row 1 (RS): *K1, p1; rep from * to end.\nRow 2: *K1, p1; rep from * to end.\n\
+                Row 3: *P1, k1; rep from * to end.\nRow 4: *P1, k1; rep from * to end.";
+    assert_eq!(
+        chart(
+            "Row 1 (RS): *K1, p1; rep from * to end.\nRow 2: Rep row 1.\n\
+             Row 3: *P1, k1; rep from * to end.\nRow 4: Work as row 3."
+        ),
+        chart(moss)
+    );
+    // A chain of them reads through; one naming a row not given, or coming back round to
+    // itself, is an error that says so.
+    assert_eq!(
+        chart("Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Same as row 1.\nRow 4: Rep row 2."),
+        chart("Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Knit.\nRow 4: Purl.")
+    );
+    let m = pattern_error(StitchPattern::from_knitspeak(
+        "Row 1 (RS): Knit.\nRow 2: Rep row 5.",
+    ));
+    assert!(m.contains("Row 2") && m.contains("row 5"), "{m}");
+    let m = pattern_error(StitchPattern::from_knitspeak(
+        "Row 1 (RS): Knit.\nRow 2: Rep row 3.\nRow 3: Rep row 2.\nRow 4: Purl.",
+    ));
+    assert!(m.contains("come back to it"), "{m}");
+    // In the round, "around" ends a repeat or a run as "to end" does.
+    assert_eq!(
+        chart("Rnd 1: *K2, p2; rep from * around.\nRnd 2: Knit around.\nRnd 3: K around."),
+        chart("Rnd 1: *K2, p2; rep from * to end.\nRnd 2: Knit.\nRnd 3: Knit.")
+    );
     // Each row is given once: a second "Row 1" is an error, not the one that wins.
     let m = pattern_error(StitchPattern::from_knitspeak(
         "Row 1 (RS): Knit.\nRow 1: Purl.\nRow 2: Purl.",

@@ -166,7 +166,9 @@ fn until(s: &str) -> Option<Until> {
     let s = s.trim_start_matches("and").trim();
     match s {
         "" | "to end" | "to the end" | "across" | "to end of row" | "to end of rnd"
-        | "to end of round" | "across row" | "all sts" | "all" => return Some(Until::End),
+        | "to end of round" | "across row" | "all sts" | "all" | "around" | "all around" => {
+            return Some(Until::End)
+        }
         "to last st" | "to the last st" | "to last stitch" => return Some(Until::Last(1)),
         _ => {}
     }

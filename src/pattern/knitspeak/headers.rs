@@ -168,6 +168,12 @@ impl RowSheet {
         Ok(())
     }
 
+    /// The statement that gives row `row` by its number, if one does.
+    pub(super) fn statement_of(&self, row: usize) -> Option<usize> {
+        row.checked_sub(1)
+            .and_then(|r| self.defined.get(r).copied().flatten())
+    }
+
     /// The rows of one vertical repeat, bottom up: (row number, is RS, statement). Flat
     /// knitting with an odd number of rows that alternate sides turns over between repeats,
     /// so its rows come twice, the second time on the other side and numbered on from the

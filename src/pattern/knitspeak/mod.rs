@@ -15,12 +15,15 @@
 //!   rows outside it are knitted once and the chart repeats all its rows. Each row number
 //!   may be given once. Title lines in parentheses before the first row (`(Seed stitch)`)
 //!   are skipped. The rows need not start at 1 (rows copied from the middle of a text): the
-//!   repeat runs from the lowest row given to the highest, each row numbered as written.
+//!   repeat runs from the lowest row given to the highest, each row numbered as written. A
+//!   row whose body says to work another row again (`Row 4: Rep row 2.`, `Work as row 2`,
+//!   `Same as rnd 1`) takes that row's instructions and works them on its own side
+//!   ([`same_as`]).
 //! - Sides: a header's `(RS)` / `(WS)` sets the side of its rows; other rows of flat knitting
 //!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
 //!   number of rows turns over between repeats, so the chart holds the rows twice, the second
 //!   time on the other side (rows `h+1 .. 2h` in messages).
-//! - Repeats: `*k2, p2; rep from *`, `rep from * to end` / `across`, `rep from * to last 3
+//! - Repeats: `*k2, p2; rep from *`, `rep from * to end` / `across` / `around`, `rep from * to last 3
 //!   sts, k3` (the stitches after the repeat must be exactly that many), `rep from * 2 more
 //!   times` (a fixed count), stitches before and after the repeat, `[k1, p1] 3 times`, `(yo,
 //!   k1) twice`, `k2tog 3 times`, `k to end` / `k to last 3 sts` / `Knit.` / `Purl.` (a
@@ -86,6 +89,7 @@ mod headers;
 mod layout;
 mod lexer;
 pub(super) mod numbers;
+mod same_as;
 mod width_note;
 
 pub(crate) use layout::{lcm, normalised, shorter_way, wrap};
@@ -106,6 +110,12 @@ pub const MAX_BRACKET_DEPTH: usize = 16;
 /// Most rows a Knitspeak pattern may number.
 pub const MAX_KNITSPEAK_ROWS: usize = crate::pattern::MAX_PATTERN_ROWS;
 
+/// What a statement gives its rows: a body, or another row's (`Rep row 2.`).
+enum Given {
+    Body(body::Body),
+    SameAs(usize),
+}
+
 /// Reads Knitspeak text (see the module docs) into a pattern whose chart is as seen on the
 /// right side, row 1 at the bottom.
 pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
@@ -118,13 +128,40 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
     }
     // Statement by statement, so that the first error in the text is the one reported.
     let mut sheet = RowSheet::default();
-    let mut bodies = Vec::with_capacity(statements.len());
+    let mut read = Vec::with_capacity(statements.len());
     for (header, body) in &statements {
         let rows = parse_header(header)?;
         let what = header.trim().to_string();
-        let parsed = parse_body(body, &what)?;
-        sheet.cover(rows, &what, bodies.len())?;
-        bodies.push((what, parsed));
+        // `Row 4: Rep row 2.` takes row 2's body once every row is known.
+        let parsed = match same_as::same_as(body) {
+            Some(row) => Given::SameAs(row),
+            None => Given::Body(parse_body(body, &what)?),
+        };
+        sheet.cover(rows, &what, read.len())?;
+        read.push((what, parsed));
+    }
+    let mut bodies = Vec::with_capacity(read.len());
+    for (what, parsed) in &read {
+        let mut body = parsed;
+        // Follow a chain of references (`Row 6: Rep row 4.`, `Row 4: Rep row 2.`); one that
+        // comes back to itself is refused.
+        for _ in 0..=read.len() {
+            let Given::SameAs(row) = body else { break };
+            let index = sheet.statement_of(*row).ok_or_else(|| {
+                KnitError::Pattern(format!(
+                    "{what}: repeats row {row}, which the pattern does not give"
+                ))
+            })?;
+            body = &read[index].1;
+        }
+        match body {
+            Given::Body(b) => bodies.push((what.clone(), b.clone())),
+            Given::SameAs(_) => {
+                return Err(KnitError::Pattern(format!(
+                    "{what}: the rows it repeats come back to it: write one of them out"
+                )))
+            }
+        }
     }
     for note in &lexed.notes {
         headers::check_repeat_note(note, sheet.first(), sheet.height())?;
