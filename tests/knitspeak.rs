@@ -34,6 +34,14 @@ fn pattern_error<T: std::fmt::Debug>(result: Result<T, KnitError>) -> String {
     }
 }
 
+/// Each text is refused with a pattern error whose message holds its phrase.
+fn refused(cases: &[(&str, &str)]) {
+    for (text, says) in cases {
+        let m = pattern_error(StitchPattern::from_knitspeak(text));
+        assert!(m.contains(says), "{text:?}: {m}");
+    }
+}
+
 /// Whether two patterns are the same fabric up to a horizontal shift (a chart may start at
 /// any column of the repeat).
 fn same_up_to_shift(a: &StitchPattern, b: &StitchPattern) -> bool {
@@ -495,6 +503,39 @@ fn repeats_groups_counts_and_spelling() {
         "Row 1 (RS): Knit.\nRow 2: Rep row 3.\nRow 3: Rep row 2.\nRow 4: Purl.",
     ));
     assert!(m.contains("come back to it"), "{m}");
+    // Ranges repeat row by row, and "last N rows" counts back from the statement's first
+    // row; a row given by "All WS rows" can be named too.
+    let written = "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.\n\
+                   Row 3: *P2, k2; rep from *.\nRow 4: *P2, k2; rep from *.";
+    let long = chart(&format!(
+        "{written}\nRow 5: *K2, p2; rep from *.\nRow 6: *K2, p2; rep from *.\n\
+         Row 7: *P2, k2; rep from *.\nRow 8: *P2, k2; rep from *."
+    ));
+    assert_eq!(chart(&format!("{written}\nRows 5-8: Rep rows 1-4.")), long);
+    assert_eq!(
+        chart(&format!("{written}\nRows 5-8: Repeat last 4 rows.")),
+        long
+    );
+    assert_eq!(
+        chart("Row 1 (RS): K1, *p1, k1; rep from *.\nRow 2: Rep last row."),
+        chart("Row 1 (RS): K1, *p1, k1; rep from *.\nRow 2: K1, *p1, k1; rep from *.")
+    );
+    assert_eq!(
+        chart(
+            "Row 1 (RS): Knit.\nAll WS rows: Purl.\nRow 3: *K1, p1; rep from *.\nRow 5: Rep row 2."
+        ),
+        chart("Row 1 (RS): Knit.\nAll WS rows: Purl.\nRow 3: *K1, p1; rep from *.\nRow 5: Purl.")
+    );
+    refused(&[
+        (
+            "Row 1 (RS): Knit.\nRow 2: Rep last 2 rows.",
+            "only 1 row comes before row 2",
+        ),
+        (
+            "Row 1 (RS): Knit.\nRow 2: Purl.\nRows 3-5: Rep rows 1-2.",
+            "is 3 rows but repeats 2",
+        ),
+    ]);
     // In the round, "around" ends a repeat or a run as "to end" does.
     assert_eq!(
         chart("Rnd 1: *K2, p2; rep from * around.\nRnd 2: Knit around.\nRnd 3: K around."),
@@ -616,7 +657,7 @@ fn a_run_after_one_that_stops_short_works_what_it_left() {
         assert!(same_cells(&a, &b), "{open}\n{}\n{}", a.chart(), b.chart());
         assert_eq!(a.stitch_counts(), b.stitch_counts(), "{open}");
     }
-    for (text, needle) in [
+    refused(&[
         (
             "Row 1 (RS): k to end, p to end.",
             "\"p to end\" inside or after another repeat",
@@ -625,10 +666,7 @@ fn a_run_after_one_that_stops_short_works_what_it_left() {
             "Row 1 (RS): k to last 2 sts, p to last 2 sts.",
             "\"p to last 2 sts\" inside or after another repeat",
         ),
-    ] {
-        let e = pattern_error(StitchPattern::from_knitspeak(text));
-        assert!(e.contains(needle), "{text}: {e}");
-    }
+    ]);
 }
 
 #[test]

@@ -21,6 +21,25 @@ pub(super) struct Header {
     side: Option<bool>,
 }
 
+impl Header {
+    /// The rows it numbers, in order (`None` for `All WS rows` and the like).
+    pub(super) fn numbers(&self) -> Option<Vec<usize>> {
+        match &self.rows {
+            Rows::Numbers(n) => Some(n.clone()),
+            _ => None,
+        }
+    }
+
+    /// The same header for row `row` alone (one of those it numbers).
+    pub(super) fn only(&self, row: usize) -> Header {
+        Header {
+            rows: Rows::Numbers(vec![row]),
+            round: self.round,
+            side: self.side,
+        }
+    }
+}
+
 /// Reads a header (the text before a statement's `:`).
 pub(super) fn parse_header(header: &str) -> Result<Header> {
     let h = header.trim().to_lowercase();
@@ -168,10 +187,18 @@ impl RowSheet {
         Ok(())
     }
 
-    /// The statement that gives row `row` by its number, if one does.
+    /// The statement that gives row `row`, if one does: by its number, else as a row of its
+    /// side (`All WS rows`) or an even row, as [`Self::plan`] finds it.
     pub(super) fn statement_of(&self, row: usize) -> Option<usize> {
-        row.checked_sub(1)
-            .and_then(|r| self.defined.get(r).copied().flatten())
+        if row == 0 || row < self.first() || row > self.height() {
+            return None;
+        }
+        self.defined
+            .get(row - 1)
+            .copied()
+            .flatten()
+            .or(self.by_side[usize::from(self.side_of(row))])
+            .or(self.even.filter(|_| row % 2 == 0))
     }
 
     /// The rows of one vertical repeat, bottom up: (row number, is RS, statement). Flat

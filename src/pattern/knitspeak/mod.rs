@@ -17,8 +17,8 @@
 //!   are skipped. The rows need not start at 1 (rows copied from the middle of a text): the
 //!   repeat runs from the lowest row given to the highest, each row numbered as written. A
 //!   row whose body says to work another row again (`Row 4: Rep row 2.`, `Work as row 2`,
-//!   `Same as rnd 1`) takes that row's instructions and works them on its own side
-//!   ([`same_as`]).
+//!   `Same as rnd 1`, `Rep last row`; row by row, `Rows 5-8: Rep rows 1-4.` and `Repeat last
+//!   4 rows`) takes that row's instructions and works them on its own side ([`same_as`]).
 //! - Sides: a header's `(RS)` / `(WS)` sets the side of its rows; other rows of flat knitting
 //!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
 //!   number of rows turns over between repeats, so the chart holds the rows twice, the second
@@ -98,6 +98,7 @@ use self::body::parse_body;
 use self::headers::{parse_header, RowSheet};
 use self::layout::{lay_out, RowPlan};
 use self::lexer::{after_titles, opens_statement, statements};
+use self::same_as::SameAs;
 use self::width_note::WidthNote;
 use super::StitchPattern;
 use crate::error::{KnitError, Result};
@@ -132,13 +133,40 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
     for (header, body) in &statements {
         let rows = parse_header(header)?;
         let what = header.trim().to_string();
-        // `Row 4: Rep row 2.` takes row 2's body once every row is known.
-        let parsed = match same_as::same_as(body) {
-            Some(row) => Given::SameAs(row),
-            None => Given::Body(parse_body(body, &what)?),
-        };
-        sheet.cover(rows, &what, read.len())?;
-        read.push((what, parsed));
+        match same_as::same_as(body) {
+            None => {
+                let parsed = parse_body(body, &what)?;
+                sheet.cover(rows, &what, read.len())?;
+                read.push((what, Given::Body(parsed)));
+            }
+            // `Row 4: Rep row 2.` takes row 2's body once every row is known; `Rows 5-8: Rep
+            // rows 1-4.` is a statement per row, each naming the row it repeats.
+            Some(reference) => match rows.numbers() {
+                None => {
+                    let SameAs::Rows(target) = &reference else {
+                        return Err(KnitError::Pattern(format!(
+                            "{what}: \"{}\" names no rows of its own to count back from: \
+                             name the row it repeats",
+                            body.trim()
+                        )));
+                    };
+                    let [target] = target[..] else {
+                        return Err(KnitError::Pattern(format!(
+                            "{what}: repeats {} rows: name one",
+                            target.len()
+                        )));
+                    };
+                    sheet.cover(rows, &what, read.len())?;
+                    read.push((what, Given::SameAs(target)));
+                }
+                Some(numbers) => {
+                    for (row, target) in same_as::pairs(&numbers, &reference, &what)? {
+                        sheet.cover(rows.only(row), &what, read.len())?;
+                        read.push((what.clone(), Given::SameAs(target)));
+                    }
+                }
+            },
+        }
     }
     let mut bodies = Vec::with_capacity(read.len());
     for (what, parsed) in &read {
