@@ -536,6 +536,45 @@ fn repeats_groups_counts_and_spelling() {
             "is 3 rows but repeats 2",
         ),
     ]);
+    // "K the knit sts and p the purl sts" keeps each column's face from the row below: a
+    // rib, a cable's wrong-side row, a round, rows of it stacked; a yarn-over and a decrease
+    // below show as knits, so they are purled from the wrong side.
+    for (appearing, written) in [
+        (
+            "Row 1 (RS): *K2, p2; rep from *.\nRow 2: K the knit sts and p the purl sts.",
+            "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.",
+        ),
+        (
+            "Row 1 (RS): P2, *2/2 RC, p2; rep from *.\nRow 2: Knit the knits and purl the purls.",
+            "Row 1 (RS): P2, *2/2 RC, p2; rep from *.\nRow 2: K2, *p4, k2; rep from *.",
+        ),
+        (
+            "Rnd 1: *K1, p1; rep from *.\nRnd 2: Work sts as they appear.",
+            "Rnd 1: *K1, p1; rep from *.\nRnd 2: *K1, p1; rep from *.",
+        ),
+        (
+            "Row 1 (RS): K1, *p1, k1; rep from *.\nRow 2: Work sts as they appear.\n\
+             Row 3: Work sts as they appear.\nRow 4: Work sts as they appear.",
+            "Row 1 (RS): K1, *p1, k1; rep from *.\nRow 2: P1, *k1, p1; rep from *.\n\
+             Row 3: K1, *p1, k1; rep from *.\nRow 4: P1, *k1, p1; rep from *.",
+        ),
+        (
+            "Row 1 (RS): *K2tog, yo; rep from *.\nRow 2: Work sts as they appear.",
+            "Row 1 (RS): *K2tog, yo; rep from *.\nRow 2: Purl.",
+        ),
+    ] {
+        let (a, b) = (ks(appearing), ks(written));
+        assert!(
+            same_cells(&a, &b),
+            "{appearing:?}\n{}\n{}",
+            a.chart(),
+            b.chart()
+        );
+    }
+    refused(&[(
+        "Row 1: Work sts as they appear.\nRow 2: K the knit sts and p the purl sts.",
+        "give at least one row's stitches",
+    )]);
     // In the round, "around" ends a repeat or a run as "to end" does.
     assert_eq!(
         chart("Rnd 1: *K2, p2; rep from * around.\nRnd 2: Knit around.\nRnd 3: K around."),

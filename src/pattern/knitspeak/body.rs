@@ -35,6 +35,9 @@ pub(super) struct Body {
     /// Width notes written in it (`(multiple of 2 sts, plus 2)`), as text, for the layout to
     /// check ([`super::width_note`]).
     pub notes: Vec<String>,
+    /// `K the knit sts and p the purl sts`: a one-stitch open repeat whose stitches the
+    /// layout takes from the row below ([`super::as_they_appear`]).
+    pub as_they_appear: bool,
 }
 
 /// One element of a body, in the order written.
@@ -399,6 +402,7 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
         after: Vec::new(),
         count: None,
         notes: std::mem::take(&mut p.notes),
+        as_they_appear: false,
     };
     // 0: before the repeat, 1: inside it, 2: after it.
     let mut stage = 0;

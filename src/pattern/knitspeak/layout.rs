@@ -149,6 +149,7 @@ pub(super) fn lay_out(rows: &[RowPlan], widths: &[(String, WidthNote)]) -> Resul
                 instructions,
             });
         }
+        super::as_they_appear::settle(&appearing(rows), &mut written)?;
         return StitchPattern::from_written_rows("knitspeak", &written);
     }
 
@@ -238,7 +239,7 @@ pub(super) fn lay_out(rows: &[RowPlan], widths: &[(String, WidthNote)]) -> Resul
     let max_edges = rows.iter().map(|r| r.widths().0).max().unwrap_or(0);
     let min_n = 2 * max_edges + 4 * width;
     let n = min_n + (n0 + width - min_n % width) % width;
-    let written: Vec<WrittenRow> = rows
+    let mut written: Vec<WrittenRow> = rows
         .iter()
         .map(|r| WrittenRow {
             number: r.number,
@@ -246,6 +247,7 @@ pub(super) fn lay_out(rows: &[RowPlan], widths: &[(String, WidthNote)]) -> Resul
             instructions: r.over(n),
         })
         .collect();
+    super::as_they_appear::settle(&appearing(rows), &mut written)?;
     let cells = cells_from_rows(&written)?;
     // Columns (from the piece's left edge) where each row has an instruction boundary with as
     // many loops worked as stitches made so far.
@@ -284,6 +286,11 @@ pub(super) fn lay_out(rows: &[RowPlan], widths: &[(String, WidthNote)]) -> Resul
         .map(|row| row[start..start + width].to_vec())
         .collect();
     StitchPattern::from_rows("knitspeak", normalised(window, width))
+}
+
+/// Per row, whether it works its stitches as they appear ([`super::as_they_appear`]).
+fn appearing(rows: &[RowPlan]) -> Vec<bool> {
+    rows.iter().map(|r| r.body.as_they_appear).collect()
 }
 
 /// An all-over row's edges must keep the stitch count: a decrease or increase there

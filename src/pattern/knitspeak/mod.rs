@@ -19,6 +19,8 @@
 //!   row whose body says to work another row again (`Row 4: Rep row 2.`, `Work as row 2`,
 //!   `Same as rnd 1`, `Rep last row`; row by row, `Rows 5-8: Rep rows 1-4.` and `Repeat last
 //!   4 rows`) takes that row's instructions and works them on its own side ([`same_as`]).
+//!   A row that says `K the knit sts and p the purl sts` / `Work sts as they appear` keeps
+//!   the faces of the row below it ([`as_they_appear`]).
 //! - Sides: a header's `(RS)` / `(WS)` sets the side of its rows; other rows of flat knitting
 //!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
 //!   number of rows turns over between repeats, so the chart holds the rows twice, the second
@@ -84,6 +86,7 @@
 //! row of the repeat has; [`body`] reads a row body (its stitches, its repeat, its stitch
 //! count); [`layout`] lays the rows out on a piece and cuts one repeat.
 
+mod as_they_appear;
 mod body;
 mod headers;
 mod layout;
@@ -94,7 +97,7 @@ mod width_note;
 
 pub(crate) use layout::{lcm, normalised, shorter_way, wrap};
 
-use self::body::parse_body;
+use self::body::{parse_body, Body};
 use self::headers::{parse_header, RowSheet};
 use self::layout::{lay_out, RowPlan};
 use self::lexer::{after_titles, opens_statement, statements};
@@ -113,7 +116,7 @@ pub const MAX_KNITSPEAK_ROWS: usize = crate::pattern::MAX_PATTERN_ROWS;
 
 /// What a statement gives its rows: a body, or another row's (`Rep row 2.`).
 enum Given {
-    Body(body::Body),
+    Body(Body),
     SameAs(usize),
 }
 
@@ -135,7 +138,14 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
         let what = header.trim().to_string();
         match same_as::same_as(body) {
             None => {
-                let parsed = parse_body(body, &what)?;
+                let parsed = if as_they_appear::as_they_appear(body) {
+                    Body {
+                        as_they_appear: true,
+                        ..parse_body("Knit.", &what)?
+                    }
+                } else {
+                    parse_body(body, &what)?
+                };
                 sheet.cover(rows, &what, read.len())?;
                 read.push((what, Given::Body(parsed)));
             }

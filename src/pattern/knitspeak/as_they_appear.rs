@@ -1,0 +1,106 @@
+//! `K the knit sts and p the purl sts.` / `Work sts as they appear.`: a row that keeps every
+//! column's face, knitting each loop that shows as a knit to the knitter and purling each
+//! that shows as a purl. Written patterns say so for the wrong-side rows of ribs, textures
+//! and cables rather than spell out the stitches again.
+//!
+//! The row is read as a one-stitch open repeat (it fits any width, one stitch per loop) and,
+//! once the rows around it are laid out, takes from the row below it each column's face on
+//! the right side: a knit stays a knit (worked as a purl from the wrong side) and a purl a
+//! purl. A yarn-over or a slipped stitch below shows as a knit, as knitters purl a yarn-over
+//! from the wrong side; a twisted stitch below is worked plain.
+
+use crate::error::{KnitError, Result};
+use crate::pattern::instruction::Instruction;
+use crate::pattern::rows::{cells_from_rows, WrittenRow};
+use crate::pattern::stitch::Face;
+
+/// Whether a row's body says to work its stitches as they appear (any case and spelling of
+/// `k the knit sts and p the purl sts`, either way round, or `work (all) sts as they
+/// appear`).
+pub(super) fn as_they_appear(body: &str) -> bool {
+    let lower = body.trim().trim_end_matches('.').trim().to_lowercase();
+    let words: Vec<&str> = lower
+        .split_whitespace()
+        .filter(|w| !["the", "all", "every"].contains(w))
+        .map(|w| match w {
+            "knit" | "knits" => "k",
+            "purl" | "purls" => "p",
+            "stitches" | "stitch" | "st" => "sts",
+            w => w,
+        })
+        .collect();
+    let text = words.join(" ");
+    let sts = text.replace(" sts", "");
+    matches!(
+        sts.as_str(),
+        "k k and p p" | "p p and k k" | "work as they appear" | "work as they present themselves"
+    ) || text == "work sts as they appear"
+}
+
+/// Gives each row that works its stitches as they appear (`appear`, per row of `written`, in
+/// the order laid out, bottom up) its stitches from the row below it (the last row's for the
+/// first). Rows of that kind stacked on each other take their faces in turn.
+pub(super) fn settle(appear: &[bool], written: &mut [WrittenRow]) -> Result<()> {
+    if !appear.contains(&true) {
+        return Ok(());
+    }
+    if appear.iter().all(|&a| a) {
+        return Err(KnitError::Pattern(
+            "every row works its stitches as they appear: give at least one row's stitches".into(),
+        ));
+    }
+    let h = written.len();
+    // A row of this kind above another takes its faces once that one has them: at most one
+    // pass per row.
+    for _ in 0..h {
+        let cells = cells_from_rows(written)?;
+        let mut changed = false;
+        for r in (0..h).filter(|&r| appear[r]) {
+            let below = &cells[(r + h - 1) % h];
+            let right_side = written[r].right_side;
+            // Working order: right to left from the right side, left to right from the wrong.
+            let mut faces: Vec<Face> = below.iter().map(|s| s.face).collect();
+            if right_side {
+                faces.reverse();
+            }
+            let instructions: Vec<Instruction> = faces
+                .into_iter()
+                .map(|face| match (face, right_side) {
+                    (Face::Knit, true) | (Face::Purl, false) => Instruction::Knit,
+                    _ => Instruction::Purl,
+                })
+                .collect();
+            if instructions != written[r].instructions {
+                written[r].instructions = instructions;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_ways_knitters_write_it_are_read() {
+        for text in [
+            "K the knit sts and p the purl sts.",
+            "Knit the knits and purl the purls.",
+            "knit the knit stitches and purl the purl stitches",
+            "P the purl sts and k the knit sts.",
+            "Work sts as they appear.",
+            "Work all sts as they appear",
+            "work the stitches as they appear.",
+        ] {
+            assert!(as_they_appear(text), "{text}");
+        }
+        for text in ["Knit.", "K2, p2.", "Work in pattern.", "p the knit sts"] {
+            assert!(!as_they_appear(text), "{text}");
+        }
+    }
+}
