@@ -4,6 +4,11 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
+# CI builds once: incremental-compilation state would only take disk (about 1 GB).
+export CARGO_INCREMENTAL=0
+# A CI disk has run out of room mid-suite (a .blend save failed); say what each stage had.
+room() { echo "== disk: $(df -h --output=avail . | tail -1 | tr -d ' ') free before $1"; }
+room "bootstrap"
 scripts/bootstrap.sh
 
 echo "== lint"
@@ -14,6 +19,7 @@ cargo clippy --quiet --all-targets -- -D warnings
 # The .pyi stub against the built module: names, signatures, defaults.
 PYTHONPATH="$root/build/site" .venv/bin/python -m mypy.stubtest knitwear._core
 
+room "cargo test"
 echo "== cargo test"
 cargo test --quiet
 
@@ -23,6 +29,7 @@ PYTHONPATH="$root/build/site" .venv/bin/python -m pytest -q tests/python/core
 # Each Blender run that passes is recorded for the README's table of versions tested.
 .venv/bin/python scripts/blender_matrix.py reset
 
+room "the Blender suite"
 echo "== pytest: extension in headless Blender 5.2 (the newest)"
 .venv-blender52/bin/python -m pytest -q tests/python/blender --junitxml=build/blender-suite.xml
 .venv/bin/python scripts/blender_matrix.py suite .venv-blender52/bin/python build/blender-suite.xml
