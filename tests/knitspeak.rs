@@ -1254,3 +1254,80 @@ fn a_loop_crossing_half_its_repeat_lands_the_way_it_is_worked() {
         assert_eq!(StitchPattern::from_chart(&drawn).unwrap().chart(), drawn);
     }
 }
+
+/// Stitch markers (issue 17, the dialect): `pm` / `sm` / `place marker` mark a place and work no
+/// stitch, and a run to a marker (`k to m`, `rep from * to 2 sts before m`) fills its part,
+/// whose width the row that places the markers counts.
+#[test]
+fn stitch_markers_part_the_row_and_runs_fill_to_them() {
+    // Markers that no run works to change nothing.
+    let plain = ks("Row 1 (RS): K2, p4, k2.\nRow 2: P2, k4, p2.");
+    for marked in [
+        "Row 1 (RS): K2, pm, p4, pm, k2.\nRow 2: P2, sm, k4, sm, p2.",
+        "Row 1 (RS): K2, place marker, p4, place marker, k2.\nRow 2: P2, slip marker, k4, slm, p2.",
+        "Row 1 (RS): K2, pm, p4, pm, k2.\nRow 2: P2, sl m, k4, sl m, p2.",
+        "Row 1 (RS): Pm for beg of rnd, k2, pm A, p4, pm B, k2.\nRow 2: P2, sm A, k4, sm B, p2.",
+    ] {
+        assert!(same_cells(&ks(marked), &plain), "{marked}");
+    }
+    // A cable panel between markers, its runs to the markers counted by the set-up row: on
+    // a RS row `k to m` fills the right part, on a WS row the left one.
+    let panel = ks("Row 1 (RS): K3, pm, p2, k4, p2, pm, k5.\n\
+                    Row 2: P to m, sm, k2, p4, k2, sm, p to end.\n\
+                    Row 3: K to m, sm, p2, 2/2 RC, p2, sm, k to end.\n\
+                    Row 4: Rep row 2.");
+    let written = ks("Row 1 (RS): K3, p2, k4, p2, k5.\n\
+                      Row 2: P5, k2, p4, k2, p3.\n\
+                      Row 3: K3, p2, 2/2 RC, p2, k5.\n\
+                      Row 4: Rep row 2.");
+    assert!(
+        same_cells(&panel, &written),
+        "{}\n{}",
+        panel.chart(),
+        written.chart()
+    );
+    // A repeat to a marker, the marker slipped without a word, and a run that stops short of
+    // the marker for the stitches that follow it.
+    let lace = ks("Row 1 (RS): K1, pm, k8, pm, k1.\n\
+                   Row 2: Purl.\n\
+                   Row 3: K to m, *yo, k2tog; rep from * to m, sm, k1.\n\
+                   Row 4: Purl.\n\
+                   Row 5: K to m, sm, k to 2 sts before m, k2tog, yo, k1.\n\
+                   Row 6: Purl.");
+    let lace_written = ks("Row 1 (RS): K10.\nRow 2: Purl.\n\
+                           Row 3: K1, [yo, k2tog] 4 times, k1.\nRow 4: Purl.\n\
+                           Row 5: K7, k2tog, yo, k1.\nRow 6: Purl.");
+    assert!(same_cells(&lace, &lace_written), "{}", lace.chart());
+    // Counts stay checked: `(12 sts)` on a 10-stitch row is refused.
+    refused(&[
+        (
+            "Row 1 (RS): K to m, sm, p4, sm, k to end.\nRow 2: Purl.",
+            "no row counts the stitches before the first marker",
+        ),
+        (
+            "Row 1 (RS): K3, pm, p4, pm, k3.\nRow 2: P2, sm, k4, sm, p to end.\n\
+             Row 3: K to m, sm, p4, sm, k to end.\nRow 4: Purl.",
+            "works 2 stitches after the last marker (from the right edge) but Row 1 (RS) works 3",
+        ),
+        (
+            "Row 1 (RS): K3, pm, p4, pm, k3.\nRow 2: P to m, sm, k2, k2tog, yo, sm, p to end.\n\
+             Row 3: K to m, sm, k2tog, p2, sm, yo, k to end.\nRow 4: Purl.",
+            "change its stitch count, so the markers would move",
+        ),
+        (
+            "Row 1 (RS): K3, pm, p4, pm, k3.\nRow 2: P to m, sm, k4, p to end.\n\
+             Row 3: K to m, sm, p4, sm, k to end.\nRow 4: Purl.",
+            "Row 1 (RS) parts the row at 2 markers but Row 2 at 1 marker",
+        ),
+        (
+            "Row 1 (RS): K3, pm, p5, pm, k3.\nRow 2: Purl.\n\
+             Row 3: K to m, sm, *p2, k1; rep from * to m, sm, k to end.\nRow 4: Purl.",
+            "the part between markers 1 and 2 (from the right edge) is 5 stitches wide, but \
+             the row works a multiple of 3 stitches there",
+        ),
+        (
+            "Row 1 (RS): K3, pm, p4, pm, k3 (12 sts).\nRow 2: P to m, sm, k4, sm, p to end.",
+            "the row says (12 sts) but leaves 10 stitches",
+        ),
+    ]);
+}

@@ -144,6 +144,9 @@ fn common_stitches_not_knitted_are_explained() {
         "1-to-7-inc",
         "inclp",
         "1-to-4-inc",
+        "pb",
+        "p1b",
+        "k1b",
     ];
     for name in explained {
         let (_, count, ins) = all

@@ -25,6 +25,8 @@ enum Kind {
     Brioche,
     /// Drops a loop to unravel down the fabric (`drop st`).
     Drop,
+    /// Works into the stitch below (`k1b`), or Barbara Walker's twisted stitch (`K1-b`).
+    Below,
     /// Gathers loops and works stitches out of them (`3-to-3 gather`).
     Gather,
 }
@@ -171,6 +173,28 @@ const RECOGNISED: &[Recognised] = &[
         kind: Kind::Brioche,
     },
     Recognised {
+        phrases: &[
+            "k1b",
+            "kb",
+            "k1 b",
+            "k b",
+            "k1 below",
+            "k below",
+            "knit 1 below",
+            "p1b",
+            "pb",
+            "p1 b",
+            "p b",
+            "p1 below",
+            "p below",
+            "purl 1 below",
+        ],
+        counted: &[],
+        ignored: &[],
+        what: "works into the stitch of the row below the next one (k1 below)",
+        kind: Kind::Below,
+    },
+    Recognised {
         phrases: &["drop st", "drop stitch", "drop 1", "dip st"],
         counted: &[],
         ignored: &[],
@@ -208,6 +232,13 @@ pub fn unknitted(token: &str) -> Option<String> {
         Kind::ShortRow => format!(
             "{said}: {rows}, so short rows are not knitted yet; shape with the surface \
              instead (its outline and curvature give the fabric its shape)"
+        ),
+        // Walker's treasuries write `K1-b` / `P1-b` for a stitch worked through the back loop,
+        // stitch-maps and most others `k1b` for knit 1 below: the text cannot tell which.
+        Kind::Below => format!(
+            "{said}, so that the loop of the row below is caught by two rows: knitwear does \
+             not knit it yet. Barbara Walker's treasuries write K1-b and P1-b for a stitch \
+             worked through the back loop: if the pattern means that, write k1 tbl or p1 tbl"
         ),
         Kind::Brioche | Kind::Drop | Kind::Gather => {
             format!("{said}: knitwear does not knit it yet")
@@ -306,6 +337,9 @@ mod tests {
         assert!(m.contains("short rows are not knitted yet"), "{m}");
         assert!(unknitted("3-to-3-gather").is_some());
         assert!(unknitted("brsl").is_some());
+        let m = unknitted("K1-b").unwrap();
+        assert!(m.contains("write k1 tbl or p1 tbl"), "{m}");
+        assert!(unknitted("p1 below").is_some());
         // Not stitches it recognises.
         for other in ["kf", "bob", "bo x", "turnip", "1 to five inc", "k2"] {
             assert_eq!(unknitted(other), None, "{other}");

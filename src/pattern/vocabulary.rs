@@ -98,6 +98,11 @@ pub(crate) enum Reads {
     /// (with what follows it: `to end`, `to last 3 sts`). Here so that it is suggested, and
     /// spelled, in one place.
     RepeatFrom(&'static [&'static str]),
+    /// A stitch marker placed, slipped or removed (`pm`, `sm`, `place marker`): not a stitch
+    /// but a mark between two, which the body grammar reads (a run may end at it: `k to m`,
+    /// `k to 2 sts before m`). A spelling may be followed by the marker's name, one letter or
+    /// digit (`pm A`).
+    Marker(&'static [&'static str]),
 }
 
 /// The kind of a cross `m/n KIND`.
@@ -365,6 +370,31 @@ pub(crate) const VOCABULARY: &[Entry] = {
             ],
             offered_with_count: &[],
         },
+        Entry {
+            reads: Reads::Marker(&[
+                "pm",
+                "sm",
+                "slm",
+                "sl m",
+                "slip m",
+                "rm",
+                "place marker",
+                "slip marker",
+                "remove marker",
+                "place a marker",
+                "pm for beg of rnd",
+                "pm for beginning of rnd",
+                "pm for beginning of round",
+                "pm for beg of round",
+                "place marker for beginning of round",
+                "place beg of rnd marker",
+                "place beginning of round marker",
+                "place beginning of rnd marker",
+            ]),
+            // Not offered: "pm" is as close to many a mistyped purl as "p" is.
+            offered: &[],
+            offered_with_count: &[],
+        },
     ]
 };
 
@@ -480,7 +510,7 @@ impl Reads {
                 let &(_, m, n, purl_back) = sizes.iter().find(|s| s.0 == count)?;
                 once(cross(m, n, left, purl_back))
             }
-            Self::RepeatFrom(_) => None,
+            Self::RepeatFrom(_) | Self::Marker(_) => None,
         }
     }
 }
@@ -539,6 +569,26 @@ pub(crate) fn after_repeat_from(lower: &str) -> Option<&str> {
     })
 }
 
+/// Whether `lower` (a phrase, any case) is a stitch marker placed, slipped or removed
+/// ([`Reads::Marker`]), its name included (`pm A`, `sm 2`).
+pub(crate) fn is_marker(lower: &str) -> bool {
+    let norm = normal_form(lower);
+    let unnamed = match norm.rsplit_once(' ') {
+        Some((head, name))
+            if name.len() == 1 && name.chars().all(|c| c.is_ascii_alphanumeric()) =>
+        {
+            head
+        }
+        _ => norm.as_str(),
+    };
+    VOCABULARY.iter().any(|e| match e.reads {
+        Reads::Marker(spellings) => {
+            spellings.contains(&norm.as_str()) || spellings.contains(&unnamed)
+        }
+        _ => false,
+    })
+}
+
 /// The known stitch closest to `token`: the nearest (Levenshtein distance, case ignored) of
 /// the names [`VOCABULARY`] offers, of a cross with the token's `m/n` for a cross-like token,
 /// and of a counted stitch with the token's digits.
@@ -589,7 +639,7 @@ mod tests {
         for e in VOCABULARY {
             let mut own: Vec<String> = e.offered.iter().map(|s| s.to_string()).collect();
             match e.reads {
-                Reads::Phrase(s, _) | Reads::RepeatFrom(s) => {
+                Reads::Phrase(s, _) | Reads::RepeatFrom(s) | Reads::Marker(s) => {
                     own.extend(s.iter().map(|s| s.to_string()))
                 }
                 Reads::KnitPurl { names, tbl } => {
@@ -614,7 +664,7 @@ mod tests {
                 Reads::Cross(kinds) => own.extend(kinds.iter().map(|k| format!("2/1 {}", k.name))),
                 Reads::CableAlias | Reads::TwistAlias(_) => {}
             }
-            let stitch = !matches!(e.reads, Reads::RepeatFrom(_));
+            let stitch = !matches!(e.reads, Reads::RepeatFrom(_) | Reads::Marker(_));
             out.extend(own.into_iter().map(|s| (s, stitch)));
         }
         out
@@ -642,7 +692,7 @@ mod tests {
     #[test]
     fn offered_names_read() {
         for e in VOCABULARY {
-            if matches!(e.reads, Reads::RepeatFrom(_)) {
+            if matches!(e.reads, Reads::RepeatFrom(_) | Reads::Marker(_)) {
                 continue;
             }
             for name in e.offered {

@@ -10,7 +10,7 @@ use crate::error::{KnitError, Result};
 use crate::pattern::instruction::MAX_CROSS_SIDE;
 use crate::pattern::unknitted::unknitted;
 use crate::pattern::vocabulary::{
-    after_repeat_from, is_knit_or_purl_name, parse_stitch, suggest, Stitched,
+    after_repeat_from, is_knit_or_purl_name, is_marker, parse_stitch, suggest, Stitched,
 };
 
 /// How an open repeat ends.
@@ -22,10 +22,13 @@ pub(super) enum Until {
     Last(usize),
     /// `rep from * 2 more times`: this many times in all.
     Times(usize),
+    /// `to m`, `to 2 sts before m`: to this many stitches before the next stitch marker (or
+    /// the row's end, where the marker is the beginning of the round).
+    Marker(usize),
 }
 
 /// One row's body: stitches before the repeat, the repeat, stitches after it (working order).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub(super) struct Body {
     pub before: Vec<Stitched>,
     pub repeat: Option<(Vec<Stitched>, Until)>,
@@ -38,6 +41,51 @@ pub(super) struct Body {
     /// `K the knit sts and p the purl sts`: a one-stitch open repeat whose stitches the
     /// layout takes from the row below ([`super::as_they_appear`]).
     pub as_they_appear: bool,
+    /// Where stitch markers part the row (`K4, pm, p12, pm, k4`; `K to m, sm, p12, sm, k to
+    /// end`), its parts between them in working order, each read as a body of its own (a run
+    /// `to m` runs to the end of its part); empty where no marker parts the row (or where its
+    /// parts cannot be read apart, `K2, pm, *k2, p2; rep from * to last 2 sts, k2`, whose
+    /// repeat counts from the row's end).
+    pub segments: Vec<Body>,
+    /// A part other than the last has no fixed width (`k to m`): its width comes from the
+    /// rows that count it ([`super::markers`]), and `before` / `repeat` / `after` are unread.
+    pub to_marker: bool,
+}
+
+/// Loops of the row below that `v` works.
+pub(super) fn loops_in(v: &[Stitched]) -> usize {
+    v.iter().map(|s| s.ins.stitches_in()).sum()
+}
+
+impl Body {
+    /// Stitches worked outside an open repeat, and the repeat's width (`None`: a fixed row).
+    pub(super) fn widths(&self) -> (usize, Option<usize>) {
+        let edges = loops_in(&self.before) + loops_in(&self.after);
+        match &self.repeat {
+            Some((unit, Until::Times(t))) => (edges + t * loops_in(unit), None),
+            Some((unit, _)) => (edges, Some(loops_in(unit))),
+            None => (edges, None),
+        }
+    }
+
+    /// Its stitches over a piece (or a part between markers) `n` stitches wide, in working
+    /// order; `n` is one the row fits ([`Self::widths`]).
+    pub(super) fn over(&self, n: usize) -> Vec<Stitched> {
+        let (edges, repeat) = self.widths();
+        let mut out = self.before.clone();
+        if let Some((unit, until)) = &self.repeat {
+            let times = match (until, repeat) {
+                (Until::Times(t), _) => *t,
+                (_, Some(w)) => n.saturating_sub(edges) / w.max(1),
+                _ => 0,
+            };
+            for _ in 0..times {
+                out.extend_from_slice(unit);
+            }
+        }
+        out.extend_from_slice(&self.after);
+        out
+    }
 }
 
 /// One element of a body, in the order written.
@@ -49,6 +97,8 @@ enum El {
     RepStart(usize),
     RepEnd(Until, usize),
     Count(usize),
+    /// `pm`, `sm`: a stitch marker between two stitches.
+    Marker,
 }
 
 /// Reads a body's tokens into its elements, brackets expanded.
@@ -175,6 +225,9 @@ fn until(s: &str) -> Option<Until> {
         "to last st" | "to the last st" | "to last stitch" => return Some(Until::Last(1)),
         _ => {}
     }
+    if let Some(n) = to_marker(s) {
+        return Some(Until::Marker(n));
+    }
     if let Some(rest) = s
         .strip_prefix("to last")
         .or_else(|| s.strip_prefix("to the last"))
@@ -196,6 +249,39 @@ fn until(s: &str) -> Option<Until> {
         (_, Some(Some(n))) => Some(Until::Times(n + 1)),
         _ => None,
     }
+}
+
+/// `to m`, `to next marker`, `to 2 sts before m`, `to st before m` (lower case, trimmed) ->
+/// the stitches the run leaves before the marker.
+fn to_marker(s: &str) -> Option<usize> {
+    let s = s.strip_prefix("to ")?.trim();
+    let marker = |t: &str| {
+        let t = t
+            .trim()
+            .trim_start_matches("the ")
+            .trim_start_matches("next ");
+        matches!(t, "m" | "marker")
+    };
+    if marker(s) {
+        return Some(0);
+    }
+    let (n, m) = s.split_once(" before ")?;
+    if !marker(m) {
+        return None;
+    }
+    let n = n
+        .trim()
+        .trim_start_matches("the ")
+        .trim_start_matches("last ");
+    if matches!(n, "st" | "stitch") {
+        return Some(1);
+    }
+    let n = n
+        .trim_end_matches("stitches")
+        .trim_end_matches("sts")
+        .trim_end_matches("st")
+        .trim();
+    numbers::count(n).filter(|&n| n >= 1)
 }
 
 impl BodyParser<'_> {
@@ -343,6 +429,10 @@ impl BodyParser<'_> {
             return Ok(());
         }
         self.instruction += 1;
+        if is_marker(lower) {
+            els.push(El::Marker);
+            return Ok(());
+        }
         if let Some(rest) = after_repeat_from(lower) {
             let u = until(rest).ok_or_else(|| {
                 self.err(
@@ -396,13 +486,126 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
         notes: Vec::new(),
     };
     let els = p.list(None, 0)?;
-    let mut out = Body {
-        before: Vec::new(),
-        repeat: None,
-        after: Vec::new(),
-        count: None,
-        notes: std::mem::take(&mut p.notes),
-        as_they_appear: false,
+    let notes = std::mem::take(&mut p.notes);
+    let count = els.iter().fold(None, |c, el| match el {
+        El::Count(n) => Some(*n),
+        _ => c,
+    });
+    let parts = parted(els);
+    let open_part = parts.len() > 1
+        && parts[..parts.len() - 1]
+            .iter()
+            .any(|part| part.iter().any(runs_to_marker));
+    let segments = if parts.len() > 1 {
+        let last = parts.len() - 1;
+        let read: Result<Vec<Body>> = parts
+            .iter()
+            .enumerate()
+            .map(|(i, part)| body_of(part.clone(), what, body, i == last))
+            .collect();
+        match read {
+            Ok(segments) => segments,
+            // A part that cannot be read alone (a repeat counted from the row's end) matters
+            // only where a run ends at a marker; elsewhere the markers change nothing.
+            Err(e) if open_part => return Err(e),
+            Err(_) => Vec::new(),
+        }
+    } else {
+        Vec::new()
+    };
+    let mut out = if open_part {
+        Body {
+            to_marker: true,
+            ..Body::default()
+        }
+    } else {
+        body_of(parts.concat(), what, body, true)?
+    };
+    out.count = count;
+    out.notes = notes;
+    out.segments = segments;
+    Ok(out)
+}
+
+/// Whether `el` is a run or a repeat that stops at a marker (`k to m`, `rep from * to 2 sts
+/// before m`).
+fn runs_to_marker(el: &El) -> bool {
+    matches!(
+        el,
+        El::Fill(_, Until::Marker(_), _) | El::RepEnd(Until::Marker(_), _)
+    )
+}
+
+/// A body's elements parted at its stitch markers, the markers dropped. A run `to m` ends its
+/// part where no marker follows it at once (`K to m, p to end`: the marker is slipped without
+/// a word), and a run `to 2 sts before m` ends it 2 stitches later (a yarn-over straight after
+/// those stays in it: `k to 2 sts before m, k2tog, yo, k1`). Markers inside a `*`
+/// repeat, and those before the first stitch or after the last, part nothing.
+fn parted(els: Vec<El>) -> Vec<Vec<El>> {
+    let mut parts = vec![Vec::new()];
+    let mut in_repeat = false;
+    // Loops still to be worked before a run's marker: `Some(0)` parts at the next element.
+    let mut pending: Option<usize> = None;
+    for el in els {
+        let part_here = match (&el, pending) {
+            (El::Marker, _) => {
+                pending = None;
+                !in_repeat
+            }
+            (El::Count(_), _) => false,
+            // A yarn-over right after the stitches before the marker stays with them.
+            (El::Stitch(s), Some(0)) if s.ins.stitches_in() == 0 => false,
+            (El::Stitch(_), Some(0)) | (El::Fill(..) | El::RepStart(_), Some(_)) => {
+                pending = None;
+                true
+            }
+            _ => false,
+        };
+        if part_here && !parts.last().is_some_and(Vec::is_empty) {
+            parts.push(Vec::new());
+        }
+        match &el {
+            El::RepStart(_) => in_repeat = true,
+            El::RepEnd(u, _) => {
+                in_repeat = false;
+                if let Until::Marker(n) = u {
+                    pending = Some(*n);
+                }
+            }
+            El::Fill(_, Until::Marker(n), _) => pending = Some(*n),
+            El::Stitch(s) => {
+                if let Some(n) = pending.as_mut() {
+                    *n = n.saturating_sub(s.ins.stitches_in());
+                }
+            }
+            _ => {}
+        }
+        if !matches!(el, El::Marker) {
+            parts.last_mut().expect("one part at least").push(el);
+        }
+    }
+    parts.retain(|p| p.iter().any(|el| !matches!(el, El::Count(_))));
+    if parts.is_empty() {
+        parts.push(Vec::new());
+    }
+    parts
+}
+
+/// The body of `els`, a whole row or one part of it between markers: its stitches before its
+/// repeat, the repeat and those after. `last`: the part runs to the row's end, so `to end` and
+/// `to last N sts` may end its repeat; a run `to m` ends at the part's end either way.
+fn body_of(els: Vec<El>, what: &str, body: &str, last: bool) -> Result<Body> {
+    let mut out = Body::default();
+    // A run to a marker runs to its part's end, as `to end` / `to last N sts` runs to the
+    // row's.
+    let to_end = |u: Until, at: usize| match u {
+        Until::Marker(0) => Ok(Until::End),
+        Until::Marker(n) => Ok(Until::Last(n)),
+        Until::End | Until::Last(_) if !last => Err(KnitError::Pattern(format!(
+            "{what}, instruction {at}: a run to the end of the row before a stitch marker: \
+             end it at the marker (\"to m\")"
+        ))),
+        u => Ok(u),
     };
     // 0: before the repeat, 1: inside it, 2: after it.
     let mut stage = 0;
@@ -411,6 +614,7 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
     for el in els {
         match el {
             El::Count(n) => out.count = Some(n),
+            El::Marker => {}
             El::Stitch(s) => match stage {
                 0 => out.before.push(s),
                 1 => unit.push(s),
@@ -433,10 +637,11 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
                          before it"
                     )));
                 }
-                out.repeat = Some((std::mem::take(&mut unit), u));
+                out.repeat = Some((std::mem::take(&mut unit), to_end(u, at)?));
                 stage = 2;
             }
             El::Fill(s, u, at) => {
+                let u = to_end(u, at)?;
                 if stage != 0 {
                     // A run after one that stopped `to last N sts` works what that one left,
                     // less the stitches worked between and those it leaves in turn:
@@ -448,7 +653,7 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
                     let leaves = match u {
                         Until::End => Some(0),
                         Until::Last(m) => Some(m),
-                        Until::Times(_) => None,
+                        Until::Times(_) | Until::Marker(_) => None,
                     };
                     let worked: usize = out.after.iter().map(|x| x.ins.stitches_in()).sum();
                     if let (Some(n), Some(m)) = (left, leaves) {

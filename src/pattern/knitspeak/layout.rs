@@ -31,30 +31,11 @@ impl RowPlan<'_> {
     }
     /// Stitches worked outside an open repeat, and the repeat's width (`None`: a fixed row).
     fn widths(&self) -> (usize, Option<usize>) {
-        let edges = self.ins_in(&self.body.before) + self.ins_in(&self.body.after);
-        match &self.body.repeat {
-            Some((unit, Until::Times(t))) => (edges + t * self.ins_in(unit), None),
-            Some((unit, _)) => (edges, Some(self.ins_in(unit))),
-            None => (edges, None),
-        }
+        self.body.widths()
     }
     /// The row over a piece `n` stitches wide, in working order.
     fn over(&self, n: usize) -> Vec<Instruction> {
-        let (edges, repeat) = self.widths();
-        let mut out = self.resolve(&self.body.before);
-        if let Some((unit, until)) = &self.body.repeat {
-            let times = match (until, repeat) {
-                (Until::Times(t), _) => *t,
-                (_, Some(w)) => (n - edges) / w,
-                _ => 0,
-            };
-            let unit = self.resolve(unit);
-            for _ in 0..times {
-                out.extend_from_slice(&unit);
-            }
-        }
-        out.extend(self.resolve(&self.body.after));
-        out
+        self.resolve(&self.body.over(n))
     }
     /// The widths this row fits, for messages.
     fn describe_width(&self) -> String {

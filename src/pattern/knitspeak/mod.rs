@@ -21,6 +21,11 @@
 //!   4 rows`) takes that row's instructions and works them on its own side ([`same_as`]).
 //!   A row that says `K the knit sts and p the purl sts` / `Work sts as they appear` keeps
 //!   the faces of the row below it ([`as_they_appear`]).
+//! - Stitch markers: `pm`, `sm`, `slm`, `rm`, `place marker`, `pm A` work no stitch. A run
+//!   may end at one (`K to m, sm, p2, 2/2 RC, p2, sm, k to end`, `rep from * to m`, `k to 2
+//!   sts before m`; a marker a run reaches may be slipped without a word); the row that
+//!   places the markers with its counts fixes the width of each part between them, and the
+//!   pattern is then a panel of fixed width ([`markers`]).
 //! - Sides: a header's `(RS)` / `(WS)` sets the side of its rows; other rows of flat knitting
 //!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
 //!   number of rows turns over between repeats, so the chart holds the rows twice, the second
@@ -84,13 +89,15 @@
 //! steps, each in its own file: [`lexer`] cuts the text into `(header, body)` statements and a
 //! body into tokens; [`headers`] reads a header and works out which statement and side each
 //! row of the repeat has; [`body`] reads a row body (its stitches, its repeat, its stitch
-//! count); [`layout`] lays the rows out on a piece and cuts one repeat.
+//! count, its parts between markers); [`markers`] counts the parts of rows that work to a
+//! marker; [`layout`] lays the rows out on a piece and cuts one repeat.
 
 mod as_they_appear;
 mod body;
 mod headers;
 mod layout;
 mod lexer;
+mod markers;
 pub(super) mod numbers;
 mod same_as;
 mod width_note;
@@ -227,6 +234,16 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
             body: &bodies[index].1,
         })
         .collect();
+    // Rows that work to a stitch marker become rows of a fixed width, counted by the rows that
+    // place the markers.
+    if let Some(resolved) = markers::resolve(&rows)? {
+        let rows: Vec<RowPlan> = rows
+            .iter()
+            .zip(&resolved)
+            .map(|(r, body)| RowPlan { body, ..*r })
+            .collect();
+        return lay_out(&rows, &widths);
+    }
     lay_out(&rows, &widths)
 }
 
