@@ -42,6 +42,18 @@ fn refused(cases: &[(&str, &str)]) {
     }
 }
 
+/// Each text reads as `expected`, as `same` compares them.
+fn all_read_as(
+    texts: &[&str],
+    expected: &StitchPattern,
+    same: fn(&StitchPattern, &StitchPattern) -> bool,
+) {
+    for text in texts {
+        let read = ks(text);
+        assert!(same(&read, expected), "{text}:\n{}", read.chart());
+    }
+}
+
 /// Whether two patterns are the same fabric up to a horizontal shift (a chart may start at
 /// any column of the repeat).
 fn same_up_to_shift(a: &StitchPattern, b: &StitchPattern) -> bool {
@@ -1262,14 +1274,13 @@ fn a_loop_crossing_half_its_repeat_lands_the_way_it_is_worked() {
 fn stitch_markers_part_the_row_and_runs_fill_to_them() {
     // Markers that no run works to change nothing.
     let plain = ks("Row 1 (RS): K2, p4, k2.\nRow 2: P2, k4, p2.");
-    for marked in [
+    let marked = [
         "Row 1 (RS): K2, pm, p4, pm, k2.\nRow 2: P2, sm, k4, sm, p2.",
         "Row 1 (RS): K2, place marker, p4, place marker, k2.\nRow 2: P2, slip marker, k4, slm, p2.",
         "Row 1 (RS): K2, pm, p4, pm, k2.\nRow 2: P2, sl m, k4, sl m, p2.",
         "Row 1 (RS): Pm for beg of rnd, k2, pm A, p4, pm B, k2.\nRow 2: P2, sm A, k4, sm B, p2.",
-    ] {
-        assert!(same_cells(&ks(marked), &plain), "{marked}");
-    }
+    ];
+    all_read_as(&marked, &plain, same_cells);
     // A cable panel between markers, its runs to the markers counted by the set-up row: on
     // a RS row `k to m` fills the right part, on a WS row the left one.
     let panel = ks("Row 1 (RS): K3, pm, p2, k4, p2, pm, k5.\n\
@@ -1330,4 +1341,93 @@ fn stitch_markers_part_the_row_and_runs_fill_to_them() {
             "the row says (12 sts) but leaves 10 stitches",
         ),
     ]);
+}
+
+/// Set-up rows (`Set-up row (WS):`, `Foundation row:`, `Row 1 (set-up row):`) are worked once
+/// before the repeat: read (a misspelt stitch in one is reported, the markers it places are
+/// counted, with the stitches it adds) but not repeated.
+#[test]
+fn set_up_rows_are_read_but_not_repeated() {
+    let rib = ks("Row 1 (RS): K2, *p2, k2; rep from *.\nRow 2: P2, *k2, p2; rep from *.");
+    let with_setup = [
+        "Set-up row (WS): P2, *k2, p2; rep from *.\n\
+         Row 1 (RS): K2, *p2, k2; rep from *.\nRow 2: P2, *k2, p2; rep from *.",
+        "Foundation row: Purl.\n\
+         Row 1 (RS): K2, *p2, k2; rep from *.\nRow 2: P2, *k2, p2; rep from *.",
+        "Row 1 (set-up row, WS): Purl.\n\
+         Row 2 (RS): K2, *p2, k2; rep from *.\nRow 3: P2, *k2, p2; rep from *.",
+    ];
+    all_read_as(&with_setup, &rib, same_up_to_shift);
+    // The set-up row places the markers and increases the cable's stitches: the parts it
+    // leaves are 3, 8 and 3 stitches wide.
+    let panel = ks("Set-up row (RS): P3, pm, k2, m1, k2, m1, k2, pm, p3.\n\
+                    Row 1 (WS): K to m, sm, p8, sm, k to end.\n\
+                    Row 2: P to m, sm, 4/4 RC, sm, p to end.\n\
+                    Row 3: Rep row 1.\n\
+                    Row 4: P to m, sm, k to m, sm, p to end.");
+    let written = ks("Row 1 (WS): K3, p8, k3.\nRow 2: P3, 4/4 RC, p3.\n\
+                      Row 3: K3, p8, k3.\nRow 4: P3, k8, p3.");
+    assert!(same_cells(&panel, &written), "{}", panel.chart());
+    refused(&[(
+        "Set-up row (WS): P2, *k2, pp2; rep from *.\nRow 1 (RS): Knit.\nRow 2: Purl.",
+        "Set-up row (WS), instruction 3: unknown stitch \"pp2\"",
+    )]);
+}
+
+/// `sl1, k1, psso` and its kin written as separate instructions read as the decrease they
+/// make together, as the one-phrase spellings do.
+#[test]
+fn a_slipped_stitch_passed_over_reads_as_its_decrease() {
+    for (written, one_phrase) in [
+        ("*Sl1, k1, psso, yo; rep from *", "*skp, yo; rep from *"),
+        (
+            "*Yo, sl 1, k2tog, pass slipped st over, yo, k1; rep from *",
+            "*yo, sk2p, yo, k1; rep from *",
+        ),
+        (
+            "*Yo, sl2, k1, p2sso, yo, k1; rep from *",
+            "*yo, cdd, yo, k1; rep from *",
+        ),
+        (
+            "*Yo, sl2, p1, p2sso, yo, p1; rep from *",
+            "*yo, cddp, yo, p1; rep from *",
+        ),
+    ] {
+        let a = ks(&format!("Row 1 (RS): {written}.\nRow 2: Purl."));
+        let b = ks(&format!("Row 1 (RS): {one_phrase}.\nRow 2: Purl."));
+        assert!(same_cells(&a, &b), "{written}");
+    }
+    refused(&[
+        (
+            "Row 1 (RS): *Sl1, k2, psso, yo; rep from *.\nRow 2: Purl.",
+            "a slipped stitch passed over two or more stitches, each keeping its loop, is not \
+             knitted yet",
+        ),
+        (
+            "Row 1 (RS): *K1, psso, yo; rep from *.\nRow 2: Purl.",
+            "instruction 2 (\"psso\"): passes slipped stitches over",
+        ),
+    ]);
+}
+
+/// `These 2 rows form the pattern.` is a note on the repeat, checked against the rows given;
+/// `k2tog through back loop` is `k2tog tbl`.
+#[test]
+fn notes_that_name_the_repeating_rows_are_checked() {
+    let rib = ks("Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.");
+    let noted = [
+        "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.\nThese 2 rows form the pattern.",
+        "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *. These two rows form the patt.",
+        "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.\nLast 2 rows form pattern.",
+    ];
+    all_read_as(&noted, &rib, same_cells);
+    refused(&[(
+        "Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Knit.\nRow 4: Knit.\nLast 2 rows form the pattern.",
+        "the pattern gives 4 rows (1 to 4), and knitwear repeats every row it is given, not the \
+         last 2",
+    )]);
+    assert!(same_cells(
+        &ks("Row 1 (RS): *K2tog through back loop, yo; rep from *.\nRow 2: Purl."),
+        &ks("Row 1 (RS): *K2tog tbl, yo; rep from *.\nRow 2: Purl."),
+    ));
 }

@@ -251,6 +251,27 @@ fn until(s: &str) -> Option<Until> {
     }
 }
 
+/// `psso` (1) or `p2sso` (2), spelled out or not: how many slipped stitches are passed over
+/// the stitches worked after them.
+fn passes_over(lower: &str) -> Option<usize> {
+    let norm = lower.trim().trim_end_matches('.').replace('-', " ");
+    match norm.as_str() {
+        "psso"
+        | "pso"
+        | "pass slipped st over"
+        | "pass slipped stitch over"
+        | "pass sl st over"
+        | "pass the slipped st over"
+        | "pass the slipped stitch over" => Some(1),
+        "p2sso"
+        | "pass 2 slipped sts over"
+        | "pass two slipped sts over"
+        | "pass the 2 slipped sts over"
+        | "pass 2 sl sts over" => Some(2),
+        _ => None,
+    }
+}
+
 /// `to m`, `to next marker`, `to 2 sts before m`, `to st before m` (lower case, trimmed) ->
 /// the stitches the run leaves before the marker.
 fn to_marker(s: &str) -> Option<usize> {
@@ -400,6 +421,45 @@ impl BodyParser<'_> {
         Ok(els)
     }
 
+    /// `sl1, k1, psso` written as three instructions: the slipped stitches and the stitch
+    /// worked after them, already read, become the decrease they make together (`skp`, `sk2p`,
+    /// `cdd`, `cddp`), as the one-phrase spellings (`sl1-k1-psso`) read.
+    fn pass_over(&self, t: &str, slipped: usize, els: &mut Vec<El>) -> Result<()> {
+        use crate::pattern::Instruction as I;
+        let tail: Vec<I> = els
+            .iter()
+            .rev()
+            .take(slipped + 1)
+            .map_while(|el| match el {
+                El::Stitch(s) => Some(s.ins),
+                _ => None,
+            })
+            .collect();
+        let slip = |i: &I| matches!(i, I::Slip { .. });
+        let made = match (slipped, tail.as_slice()) {
+            (1, [I::Knit, s]) if slip(s) => Some(I::Ssk),
+            (1, [I::K2tog, s]) if slip(s) => Some(I::Sk2p),
+            (2, [I::Knit, a, b]) if slip(a) && slip(b) => Some(I::Cdd),
+            (2, [I::Purl, a, b]) if slip(a) && slip(b) => Some(I::Cddp),
+            _ => None,
+        };
+        let Some(made) = made else {
+            return Err(self.err(
+                t,
+                "passes slipped stitches over the stitches worked after them: knitwear reads \
+                 \"sl1, k1, psso\" (skp), \"sl1, k2tog, psso\" (sk2p), \"sl2, k1, p2sso\" \
+                 (cdd) and \"sl2, p1, p2sso\" (cddp); a slipped stitch passed over two or more \
+                 stitches, each keeping its loop, is not knitted yet",
+            ));
+        };
+        els.truncate(els.len() - slipped - 1);
+        els.push(El::Stitch(Stitched {
+            ins: made,
+            slip_default: false,
+        }));
+        Ok(())
+    }
+
     fn text(&mut self, t: &str, els: &mut Vec<El>, in_brackets: bool) -> Result<()> {
         let lower = t.to_lowercase();
         let lower = lower.trim();
@@ -419,6 +479,7 @@ impl BodyParser<'_> {
         ]
         .iter()
         .any(|w| lower.starts_with(w))
+            || super::lexer::forms_the_pattern(lower)
         {
             if width_note(lower) {
                 // The sentence runs to the body's end: `Multiple of 4 sts, plus 2.`
@@ -432,6 +493,9 @@ impl BodyParser<'_> {
         if is_marker(lower) {
             els.push(El::Marker);
             return Ok(());
+        }
+        if let Some(slipped) = passes_over(lower) {
+            return self.pass_over(t, slipped, els);
         }
         if let Some(rest) = after_repeat_from(lower) {
             let u = until(rest).ok_or_else(|| {

@@ -19,6 +19,9 @@ pub(super) struct Header {
     round: bool,
     /// `(RS)` / `(WS)`, if given: whether its rows are right-side rows.
     side: Option<bool>,
+    /// `Set-up row (WS):`, `Foundation row:`: a row worked once before the repeat, which
+    /// the repeat does not hold (its numbers, if any, are its own).
+    pub(super) setup: bool,
 }
 
 impl Header {
@@ -30,12 +33,23 @@ impl Header {
         }
     }
 
+    /// The side its header gives (`(RS)`, `(WS)`), if any.
+    pub(super) fn side(&self) -> Option<bool> {
+        self.side
+    }
+
+    /// Whether it is worked in the round (`Rnd`, `Round`).
+    pub(super) fn round(&self) -> bool {
+        self.round
+    }
+
     /// The same header for row `row` alone (one of those it numbers).
     pub(super) fn only(&self, row: usize) -> Header {
         Header {
             rows: Rows::Numbers(vec![row]),
             round: self.round,
             side: self.side,
+            setup: self.setup,
         }
     }
 }
@@ -66,8 +80,16 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
             rows,
             round: false,
             side: None,
+            setup: false,
         });
     }
+    // `Set-up row (WS)`, `Foundation rnd`, `Row 1 (set-up row)`.
+    let setup = ["set-up", "set up", "setup", "foundation"]
+        .iter()
+        .any(|w| h.contains(w));
+    let h = strip_any(&h, &["set-up ", "set up ", "setup ", "foundation "])
+        .map_or(h.as_str(), str::trim_start)
+        .to_string();
     let (words, round) = if let Some(r) = strip_any(&h, &["rounds", "round", "rnds", "rnd"]) {
         (r, true)
     } else if let Some(r) = strip_any(&h, &["rows", "row"]) {
@@ -95,13 +117,14 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
             numbers.push(number(part, header)?);
         }
     }
-    if numbers.is_empty() {
+    if numbers.is_empty() && !setup {
         return Err(bad_header(header));
     }
     Ok(Header {
         rows: Rows::Numbers(numbers),
         round,
         side,
+        setup,
     })
 }
 
@@ -307,6 +330,9 @@ const REPEAT_TAILS: [&str; 9] = [
 /// (`Multiple of 6 sts plus 5.`) pass.
 pub(super) fn check_repeat_note(note: &str, first_row: usize, height: usize) -> Result<()> {
     let lower = note.trim().to_lowercase();
+    if super::lexer::forms_the_pattern(&lower) {
+        return check_rows_formed(note, &lower, first_row, height);
+    }
     let Some(rest) = strip_any(&lower, &["repeat ", "rep "]) else {
         return Ok(());
     };
@@ -365,4 +391,27 @@ pub(super) fn check_repeat_note(note: &str, first_row: usize, height: usize) -> 
         )));
     }
     Ok(())
+}
+
+/// `These 4 rows form the pattern.`: the count must be the rows given (`first_row` to
+/// `height`), since knitwear repeats all of them; a count in words is read too.
+fn check_rows_formed(note: &str, lower: &str, first_row: usize, height: usize) -> Result<()> {
+    let given = height + 1 - first_row;
+    let count = lower
+        .trim_start_matches("the ")
+        .trim_start_matches("these ")
+        .trim_start_matches("last ")
+        .split(' ')
+        .next()
+        .and_then(super::numbers::count);
+    match count {
+        Some(n) if n == given => Ok(()),
+        Some(n) => Err(KnitError::Pattern(format!(
+            "\"{}\": the pattern gives {given} rows ({first_row} to {height}), and knitwear \
+             repeats every row it is given, not the last {n}: give the {n} rows that repeat alone",
+            note.trim()
+        ))),
+        // `These rows form the pattern`: all of them.
+        None => Ok(()),
+    }
 }

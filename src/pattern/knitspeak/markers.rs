@@ -16,14 +16,17 @@ use super::layout::RowPlan;
 use crate::error::{KnitError, Result};
 
 /// Where `rows` work to a marker, their bodies as rows of fixed width (the others as they
-/// were), in the order of `rows`; `None` where no row works to a marker.
-pub(super) fn resolve(rows: &[RowPlan]) -> Result<Option<Vec<Body>>> {
+/// were), in the order of `rows`; `None` where no row works to a marker. `setup`: set-up rows
+/// worked before the repeat (numbered 0), which count the parts they leave but are not
+/// knitted.
+pub(super) fn resolve(rows: &[RowPlan], setup: &[RowPlan]) -> Result<Option<Vec<Body>>> {
     let Some(first) = rows.iter().find(|r| r.body.to_marker) else {
         return Ok(None);
     };
     let parts = first.body.segments.len();
-    let marked: Vec<&RowPlan> = rows
+    let marked: Vec<&RowPlan> = setup
         .iter()
+        .chain(rows)
         .filter(|r| !r.body.segments.is_empty())
         .collect();
     for row in &marked {
@@ -51,7 +54,8 @@ pub(super) fn resolve(rows: &[RowPlan]) -> Result<Option<Vec<Body>>> {
                 stitches(crate::pattern::Instruction::stitches_in),
                 stitches(crate::pattern::Instruction::stitches_out),
             );
-            if ins.iter().sum::<usize>() != outs.iter().sum::<usize>() {
+            // A set-up row may increase (a cable's extra stitches): it counts what it leaves.
+            if row.number > 0 && ins.iter().sum::<usize>() != outs.iter().sum::<usize>() {
                 return Err(KnitError::Pattern(format!(
                     "{}: the stitches {} change its stitch count, so the markers would move: \
                      knitwear keeps each part's count (balance its increases and decreases \
@@ -68,6 +72,7 @@ pub(super) fn resolve(rows: &[RowPlan]) -> Result<Option<Vec<Body>>> {
         for (j, part) in row.body.segments.iter().enumerate() {
             let at = right_edge_order(j, parts, row.right_side);
             if let (edges, None) = part.widths() {
+                let edges = if row.number == 0 { made(part) } else { edges };
                 match widths[at] {
                     None => widths[at] = Some((edges, row.what)),
                     Some((w, by)) if w != edges => {
@@ -118,6 +123,11 @@ pub(super) fn resolve(rows: &[RowPlan]) -> Result<Option<Vec<Body>>> {
         });
     }
     Ok(Some(out))
+}
+
+/// Stitches a part of fixed width leaves (those of a set-up row, which may increase).
+fn made(part: &Body) -> usize {
+    part.over(0).iter().map(|s| s.ins.stitches_out()).sum()
 }
 
 /// Part `j` of `parts` in working order as counted from the right edge: a wrong-side row meets

@@ -26,6 +26,12 @@
 //!   sts before m`; a marker a run reaches may be slipped without a word); the row that
 //!   places the markers with its counts fixes the width of each part between them, and the
 //!   pattern is then a panel of fixed width ([`markers`]).
+//! - Set-up rows (`Set-up row (WS):`, `Foundation row:`, `Row 1 (set-up row):`), worked once
+//!   before the repeat: read, and the markers they place counted (with the stitches they
+//!   add), but not knitted, since the repeat covers the surface. `These 4 rows form the
+//!   pattern.` is a note checked against the rows given. `sl1, k1, psso`, `sl1, k2tog, psso`,
+//!   `sl2, k1, p2sso` (and `p1`) written as separate instructions read as `skp`, `sk2p`,
+//!   `cdd` and `cddp`.
 //! - Sides: a header's `(RS)` / `(WS)` sets the side of its rows; other rows of flat knitting
 //!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
 //!   number of rows turns over between repeats, so the chart holds the rows twice, the second
@@ -140,9 +146,22 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
     // Statement by statement, so that the first error in the text is the one reported.
     let mut sheet = RowSheet::default();
     let mut read = Vec::with_capacity(statements.len());
+    // Set-up rows, worked once before the repeat: (header, body, side given, in the round).
+    let mut setups: Vec<(String, Body, Option<bool>, bool)> = Vec::new();
     for (header, body) in &statements {
         let rows = parse_header(header)?;
         let what = header.trim().to_string();
+        if rows.setup {
+            // Read, so that a stitch it misspells is reported and the markers it places are
+            // counted, but not knitted: the repeat covers the surface.
+            setups.push((
+                what.clone(),
+                parse_body(body, &what)?,
+                rows.side(),
+                rows.round(),
+            ));
+            continue;
+        }
         match same_as::same_as(body) {
             None => {
                 let parsed = if as_they_appear::as_they_appear(body) {
@@ -236,7 +255,8 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
         .collect();
     // Rows that work to a stitch marker become rows of a fixed width, counted by the rows that
     // place the markers.
-    if let Some(resolved) = markers::resolve(&rows)? {
+    let setup_rows = setup_plans(&setups, &rows);
+    if let Some(resolved) = markers::resolve(&rows, &setup_rows)? {
         let rows: Vec<RowPlan> = rows
             .iter()
             .zip(&resolved)
@@ -245,6 +265,31 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
         return lay_out(&rows, &widths);
     }
     lay_out(&rows, &widths)
+}
+
+/// The set-up rows as rows worked before the repeat's first row: each on the side its header
+/// gives, or else on the other side from the row after it (in the round, the right side).
+fn setup_plans<'a>(
+    setups: &'a [(String, Body, Option<bool>, bool)],
+    rows: &[RowPlan],
+) -> Vec<RowPlan<'a>> {
+    let mut next_rs = rows.first().is_none_or(|r| r.right_side);
+    let mut plans: Vec<RowPlan> = setups
+        .iter()
+        .rev()
+        .map(|(what, body, side, round)| {
+            let right_side = side.unwrap_or(*round || !next_rs);
+            next_rs = right_side;
+            RowPlan {
+                number: 0,
+                right_side,
+                what,
+                body,
+            }
+        })
+        .collect();
+    plans.reverse();
+    plans
 }
 
 /// Whether `text` looks like Knitspeak rather than a symbol chart: it starts with a row header.
