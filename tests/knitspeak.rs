@@ -1431,3 +1431,48 @@ fn notes_that_name_the_repeating_rows_are_checked() {
         &ks("Row 1 (RS): *K2tog tbl, yo; rep from *.\nRow 2: Purl."),
     ));
 }
+
+/// Headers as printed patterns write them: `Row 2 and all WS rows`, `Row 2 and all foll WS
+/// rows`, `Every WS row`, `Odd rows`, `All odd-numbered rows`, and a side in brackets before
+/// more row numbers (`Rows 1 (RS) and 3`); and a repeat `ending k1`.
+#[test]
+fn headers_that_name_a_row_and_its_kind_read_as_knitters_write_them() {
+    let moss = ks("Row 1 (RS): *K2, p2; rep from *.\nRow 2: Purl.\n\
+                   Row 3: *P2, k2; rep from *.\nRow 4: Purl.");
+    let headers = [
+        "Row 1 (RS): *K2, p2; rep from *.\nRow 2 and all WS rows: Purl.\n\
+         Row 3: *P2, k2; rep from *.",
+        "Row 1 (RS): *K2, p2; rep from *.\nRow 2 and all foll WS rows: Purl.\n\
+         Row 3: *P2, k2; rep from *.",
+        "Row 1 (RS): *K2, p2; rep from *.\nEvery WS row: Purl.\nRow 3: *P2, k2; rep from *.",
+        "Row 1 (RS): *K2, p2; rep from *.\nEven rows: Purl.\nRow 3: *P2, k2; rep from *.",
+    ];
+    all_read_as(&headers, &moss, same_cells);
+    let stripes = ks("Row 1 (RS): Knit.\nRow 2: Purl.");
+    let parities = [
+        "All odd-numbered rows: Knit.\nAll even-numbered rows: Purl.",
+        "Odd rows (RS): Knit.\nEven rows: Purl.",
+    ];
+    all_read_as(&parities, &stripes, same_cells);
+    let four = ks("Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Knit.\nRow 4: Purl.");
+    all_read_as(
+        &["Rows 1 (RS) and 3: Knit.\nRows 2 and 4: Purl."],
+        &four,
+        same_cells,
+    );
+    let rib = ks("Row 1 (RS): *K1, p1; rep from * to last st, k1.\n\
+                  Row 2: *P1, k1; rep from * to last st, p1.");
+    let ending = [
+        "Row 1 (RS): *K1, p1; rep from *, ending k1.\nRow 2: *P1, k1; rep from *, end p1.",
+        "Row 1 (RS): *K1, p1; rep from *, end with k1.\nRow 2: *P1, k1; rep from *, ending with p1.",
+    ];
+    all_read_as(&ending, &rib, same_cells);
+    assert!(same_cells(
+        &ks("Row 1 (RS): *Knit into back of st, p1; rep from *.\nRow 2: *K1, p1 tbl; rep from *."),
+        &ks("Row 1 (RS): *K1 tbl, p1; rep from *.\nRow 2: *K1, p1 tbl; rep from *."),
+    ));
+    refused(&[(
+        "All odd rows: Knit.\nAll sideways rows: Purl.",
+        "\"All sideways rows\" is not a row header",
+    )]);
+}

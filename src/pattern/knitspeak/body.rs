@@ -497,6 +497,16 @@ impl BodyParser<'_> {
         if let Some(slipped) = passes_over(lower) {
             return self.pass_over(t, slipped, els);
         }
+        // `*k1, p1; rep from *, ending k1`: the stitches the row ends with, after its repeat.
+        if matches!(els.last(), Some(El::RepEnd(..))) {
+            let ending = ["ending with ", "end with ", "ending ", "end "]
+                .iter()
+                .find_map(|w| lower.strip_prefix(w));
+            if let Some(rest) = ending {
+                self.instruction -= 1;
+                return self.text(rest, els, in_brackets);
+            }
+        }
         if let Some(rest) = after_repeat_from(lower) {
             let u = until(rest).ok_or_else(|| {
                 self.err(

@@ -10,6 +10,7 @@ pub(super) enum Rows {
     Numbers(Vec<usize>),
     AllOfSide(bool),
     AllEven,
+    AllOdd,
 }
 
 /// What a header says.
@@ -64,17 +65,16 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
     } else {
         None
     };
-    if let Some(rest) = h.strip_prefix("all ") {
-        let rest = rest.replace('-', " ");
-        let rows = if rest.starts_with("rs") || rest.starts_with("right side") {
-            Rows::AllOfSide(true)
-        } else if rest.starts_with("ws") || rest.starts_with("wrong side") {
-            Rows::AllOfSide(false)
-        } else if rest.starts_with("even") {
-            Rows::AllEven
-        } else {
-            return Err(bad_header(header));
-        };
+    // `All WS rows`, `Every RS row`, `Odd rows`, and `Row 2 and all foll WS rows` (row 2 is
+    // one of them).
+    let all = strip_any(&h, &["all ", "every "])
+        .or_else(|| {
+            let (first, rest) = h.split_once(" and ")?;
+            strip_any(first, &["rows ", "row ", "rnds ", "rnd "])?;
+            strip_any(rest.trim_start(), &["all ", "every "])
+        })
+        .map_or_else(|| all_rows(&h), all_rows);
+    if let Some(rows) = all {
         // "All WS rows" says its side by what it covers, not by a (WS).
         return Ok(Header {
             rows,
@@ -82,6 +82,9 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
             side: None,
             setup: false,
         });
+    }
+    if h.starts_with("all ") {
+        return Err(bad_header(header));
     }
     // `Set-up row (WS)`, `Foundation rnd`, `Row 1 (set-up row)`.
     let setup = ["set-up", "set up", "setup", "foundation"]
@@ -97,7 +100,14 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
     } else {
         return Err(bad_header(header));
     };
-    let words = words.split(['(', '[']).next().unwrap_or("");
+    // `Rows 1 (RS) and 3`: what is in brackets says the side, not which rows.
+    let mut words = words.to_string();
+    while let Some(open) = words.find(['(', '[']) {
+        let close = words[open..]
+            .find([')', ']'])
+            .map_or(words.len(), |c| open + c + 1);
+        words.replace_range(open..close, " ");
+    }
     let mut numbers = Vec::new();
     for part in words.replace(" and ", ",").replace('&', ",").split(',') {
         let part = part.trim().trim_start_matches("and ").trim();
@@ -125,6 +135,35 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
         round,
         side,
         setup,
+    })
+}
+
+/// `rs rows`, `wrong side rows`, `even numbered rows`, `foll ws rows`, `odd rows` (after
+/// `all` / `every`, or alone for odd and even): the rows of a side or of a parity.
+fn all_rows(rest: &str) -> Option<Rows> {
+    let rest = rest.replace('-', " ");
+    let rest = strip_any(&rest, &["foll ", "following ", "other ", "remaining "])
+        .unwrap_or(&rest)
+        .trim_start();
+    let rows_word = |r: &str| {
+        let r = r.trim_start().trim_start_matches("numbered").trim_start();
+        ["rows", "row", "rnds", "rnd", "rounds", "round"]
+            .iter()
+            .any(|w| r.starts_with(w))
+    };
+    [
+        ("rs", Rows::AllOfSide(true)),
+        ("right side", Rows::AllOfSide(true)),
+        ("ws", Rows::AllOfSide(false)),
+        ("wrong side", Rows::AllOfSide(false)),
+        ("even", Rows::AllEven),
+        ("odd", Rows::AllOdd),
+    ]
+    .into_iter()
+    .find_map(|(word, rows)| {
+        rest.strip_prefix(word)
+            .filter(|r| rows_word(r))
+            .map(|_| rows)
     })
 }
 
@@ -173,6 +212,8 @@ pub(super) struct RowSheet {
     by_side: [Option<usize>; 2],
     /// `All even-numbered rows`.
     even: Option<usize>,
+    /// `All odd-numbered rows`.
+    odd: Option<usize>,
 }
 
 impl RowSheet {
@@ -182,6 +223,7 @@ impl RowSheet {
         match header.rows {
             Rows::AllOfSide(rs) => self.by_side[usize::from(rs)] = Some(index),
             Rows::AllEven => self.even = Some(index),
+            Rows::AllOdd => self.odd = Some(index),
             Rows::Numbers(numbers) => {
                 for n in numbers {
                     if n == 0 || n > MAX_KNITSPEAK_ROWS {
@@ -222,6 +264,7 @@ impl RowSheet {
             .flatten()
             .or(self.by_side[usize::from(self.side_of(row))])
             .or(self.even.filter(|_| row % 2 == 0))
+            .or(self.odd.filter(|_| row % 2 == 1))
     }
 
     /// The rows of one vertical repeat, bottom up: (row number, is RS, statement). Flat
@@ -243,6 +286,7 @@ impl RowSheet {
                 .flatten()
                 .or(by_side[usize::from(rs)])
                 .or(self.even.filter(|_| row % 2 == 0))
+                .or(self.odd.filter(|_| row % 2 == 1))
                 .ok_or_else(|| {
                     KnitError::Pattern(format!(
                         "row {row} has no instructions (rows {first} to {height} must all be \
@@ -293,7 +337,7 @@ impl RowSheet {
     pub(super) fn height(&self) -> usize {
         let by_side = self.by_side;
         let height = self.defined.len().max(
-            if by_side.iter().any(Option::is_some) || self.even.is_some() {
+            if by_side.iter().any(Option::is_some) || self.even.is_some() || self.odd.is_some() {
                 2
             } else {
                 0
@@ -301,7 +345,9 @@ impl RowSheet {
         );
         // "All WS rows" after "Row 7" means row 8 too: the repeat ends on a whole pair of rows.
         if height % 2 == 1
-            && (by_side[usize::from(self.side_of(height + 1))].is_some() || self.even.is_some())
+            && (by_side[usize::from(self.side_of(height + 1))].is_some()
+                || self.even.is_some()
+                || self.odd.is_some())
         {
             height + 1
         } else {

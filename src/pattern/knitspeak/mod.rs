@@ -5,7 +5,8 @@
 //!
 //! - Row headers: `Row 1 (RS):`, `Row 2:`, `Rows 2, 3, and 4:`, `Rows 5-8:`, `Rnd 1:` /
 //!   `Rnds 1 and 2:` / `Round 3:` (in the round every row is worked from the right side),
-//!   `All WS rows:`, `All RS rows:`, `All even-numbered rows:`. Statements may share a line
+//!   `All WS rows:`, `All RS rows:`, `All even-numbered rows:`, `Odd rows:`, `Every WS row:`,
+//!   `Row 2 and all foll WS rows:`, `Rows 1 (RS) and 3:`. Statements may share a line
 //!   (`Row 1: Knit. Row 2: Purl.`). A width note (`Multiple of 6 sts plus 5.`, `(multiple
 //!   of 2 sts, plus 2)` in a row or opening the text, `(worked over 12 sts)`) is checked
 //!   against the widths the rows fit, and one they disagree with is an error naming both
@@ -31,7 +32,7 @@
 //!   add), but not knitted, since the repeat covers the surface. `These 4 rows form the
 //!   pattern.` is a note checked against the rows given. `sl1, k1, psso`, `sl1, k2tog, psso`,
 //!   `sl2, k1, p2sso` (and `p1`) written as separate instructions read as `skp`, `sk2p`,
-//!   `cdd` and `cddp`.
+//!   `cdd` and `cddp`. `*k1, p1; rep from *, ending k1` ends the row with those stitches.
 //! - Sides: a header's `(RS)` / `(WS)` sets the side of its rows; other rows of flat knitting
 //!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
 //!   number of rows turns over between repeats, so the chart holds the rows twice, the second
