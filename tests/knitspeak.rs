@@ -1476,3 +1476,42 @@ fn headers_that_name_a_row_and_its_kind_read_as_knitters_write_them() {
         "\"All sideways rows\" is not a row header",
     )]);
 }
+
+/// Barbara Walker's treasuries write `Row 1 (Wrong side)—Knit.`; other texts `[K1, p1] to
+/// end`, `As row 1`, and `K the purl sts and p the knit sts` (seed from a rib). A text that
+/// opens with a set-up row or a Walker header is still told from a chart.
+#[test]
+fn walker_dashes_bracket_runs_and_swapped_faces_read() {
+    let walker = "Row 1 (Wrong side)\u{2014}Purl.\n\
+                  Row 2\u{2014}K1, *yo, k2tog; rep from *, end k1.\n\
+                  Rows 3 and 5\u{2014}Purl.\n\
+                  Row 4\u{2014}Knit.\n\
+                  Row 6\u{2014}K1, *ssk, yo; rep from *, end k1.";
+    let colons = "Row 1 (WS): Purl.\nRow 2: K1, *yo, k2tog; rep from * to last st, k1.\n\
+                  Rows 3 and 5: Purl.\nRow 4: Knit.\nRow 6: K1, *ssk, yo; rep from * to last st, k1.";
+    all_read_as(&[walker], &ks(colons), same_cells);
+    assert!(same_cells(
+        &StitchPattern::from_text(walker).unwrap(),
+        &ks(colons)
+    ));
+    let setup_first = "Set-up row (WS): Purl.\nRow 1 (RS): Knit.\nRow 2: Purl.";
+    assert_eq!(StitchPattern::from_text(setup_first).unwrap().height(), 2);
+
+    let rib = ks("Row 1 (RS): *K1, p1; rep from *.\nRow 2: *K1, p1; rep from *.");
+    let bracketed = [
+        "Row 1 (RS): [K1, p1] to end.\nRow 2: (K1, p1) across.",
+        "Row 1 (RS): [K1, p1] to end.\nRow 2: As row 1.",
+    ];
+    all_read_as(&bracketed, &rib, same_cells);
+    let seed = ks(
+        "Row 1 (RS): *K1, p1; rep from *.\nRow 2: *K1, p1; rep from *.\n\
+                   Row 3: *P1, k1; rep from *.\nRow 4: *P1, k1; rep from *.",
+    );
+    let swapped = [
+        "Row 1 (RS): *K1, p1; rep from *.\nRow 2: K the knit sts and p the purl sts.\n\
+         Row 3: K the purl sts and p the knit sts.\nRow 4: Work sts as they appear.",
+        "Row 1 (RS): *K1, p1; rep from *.\nRow 2: Work sts as they appear.\n\
+         Row 3: Purl the knit sts and knit the purl sts.\nRow 4: Work sts as they appear.",
+    ];
+    all_read_as(&swapped, &seed, same_cells);
+}

@@ -1,7 +1,8 @@
 //! `K the knit sts and p the purl sts.` / `Work sts as they appear.`: a row that keeps every
 //! column's face, knitting each loop that shows as a knit to the knitter and purling each
 //! that shows as a purl. Written patterns say so for the wrong-side rows of ribs, textures
-//! and cables rather than spell out the stitches again.
+//! and cables rather than spell out the stitches again. `K the purl sts and p the knit sts.`
+//! swaps every column's face instead (seed and moss stitch from a rib).
 //!
 //! The row is read as a one-stitch open repeat (it fits any width, one stitch per loop) and,
 //! once the rows around it are laid out, takes from the row below it each column's face on
@@ -14,10 +15,22 @@ use crate::pattern::instruction::Instruction;
 use crate::pattern::rows::{cells_from_rows, WrittenRow};
 use crate::pattern::stitch::Face;
 
-/// Whether a row's body says to work its stitches as they appear (any case and spelling of
-/// `k the knit sts and p the purl sts`, either way round, or `work (all) sts as they
-/// appear`).
-pub(super) fn as_they_appear(body: &str) -> bool {
+/// How a row takes its faces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(super) enum Faces {
+    /// As its stitches are written.
+    #[default]
+    Written,
+    /// Those of the row below (`k the knit sts and p the purl sts`).
+    Kept,
+    /// Those of the row below, swapped (`k the purl sts and p the knit sts`).
+    Swapped,
+}
+
+/// How a row's body says to take its faces from the row below, if it does: kept (any case
+/// and spelling of `k the knit sts and p the purl sts`, either way round, or `work (all) sts
+/// as they appear`) or swapped (`k the purl sts and p the knit sts`, either way round).
+pub(super) fn as_they_appear(body: &str) -> Option<Faces> {
     let lower = body.trim().trim_end_matches('.').trim().to_lowercase();
     let words: Vec<&str> = lower
         .split_whitespace()
@@ -31,16 +44,22 @@ pub(super) fn as_they_appear(body: &str) -> bool {
         .collect();
     let text = words.join(" ");
     let sts = text.replace(" sts", "");
-    matches!(
-        sts.as_str(),
-        "k k and p p" | "p p and k k" | "work as they appear" | "work as they present themselves"
-    ) || text == "work sts as they appear"
+    match sts.as_str() {
+        "k k and p p"
+        | "p p and k k"
+        | "work as they appear"
+        | "work as they present themselves" => Some(Faces::Kept),
+        "k p and p k" | "p k and k p" => Some(Faces::Swapped),
+        _ if text == "work sts as they appear" => Some(Faces::Kept),
+        _ => None,
+    }
 }
 
-/// Gives each row that works its stitches as they appear (`appear`, per row of `written`, in
+/// Gives each row that takes its faces from the row below (`faces`, per row of `written`, in
 /// the order laid out, bottom up) its stitches from the row below it (the last row's for the
 /// first). Rows of that kind stacked on each other take their faces in turn.
-pub(super) fn settle(appear: &[bool], written: &mut [WrittenRow]) -> Result<()> {
+pub(super) fn settle(faces: &[Faces], written: &mut [WrittenRow]) -> Result<()> {
+    let appear: Vec<bool> = faces.iter().map(|f| *f != Faces::Written).collect();
     if !appear.contains(&true) {
         return Ok(());
     }
@@ -59,14 +78,15 @@ pub(super) fn settle(appear: &[bool], written: &mut [WrittenRow]) -> Result<()> 
             let below = &cells[(r + h - 1) % h];
             let right_side = written[r].right_side;
             // Working order: right to left from the right side, left to right from the wrong.
-            let mut faces: Vec<Face> = below.iter().map(|s| s.face).collect();
+            let mut shown: Vec<Face> = below.iter().map(|s| s.face).collect();
             if right_side {
-                faces.reverse();
+                shown.reverse();
             }
-            let instructions: Vec<Instruction> = faces
+            let swap = faces[r] == Faces::Swapped;
+            let instructions: Vec<Instruction> = shown
                 .into_iter()
-                .map(|face| match (face, right_side) {
-                    (Face::Knit, true) | (Face::Purl, false) => Instruction::Knit,
+                .map(|face| match ((face == Face::Knit) != swap, right_side) {
+                    (true, true) | (false, false) => Instruction::Knit,
                     _ => Instruction::Purl,
                 })
                 .collect();
@@ -97,10 +117,16 @@ mod tests {
             "Work all sts as they appear",
             "work the stitches as they appear.",
         ] {
-            assert!(as_they_appear(text), "{text}");
+            assert_eq!(as_they_appear(text), Some(Faces::Kept), "{text}");
+        }
+        for text in [
+            "K the purl sts and p the knit sts.",
+            "Purl the knit sts and knit the purl sts.",
+        ] {
+            assert_eq!(as_they_appear(text), Some(Faces::Swapped), "{text}");
         }
         for text in ["Knit.", "K2, p2.", "Work in pattern.", "p the knit sts"] {
-            assert!(!as_they_appear(text), "{text}");
+            assert_eq!(as_they_appear(text), None, "{text}");
         }
     }
 }

@@ -38,9 +38,9 @@ pub(super) struct Body {
     /// Width notes written in it (`(multiple of 2 sts, plus 2)`), as text, for the layout to
     /// check ([`super::width_note`]).
     pub notes: Vec<String>,
-    /// `K the knit sts and p the purl sts`: a one-stitch open repeat whose stitches the
-    /// layout takes from the row below ([`super::as_they_appear`]).
-    pub as_they_appear: bool,
+    /// `K the knit sts and p the purl sts` (or the purl sts knitted): a one-stitch open repeat
+    /// whose stitches the layout takes from the row below ([`super::as_they_appear`]).
+    pub faces: super::as_they_appear::Faces,
     /// Where stitch markers part the row (`K4, pm, p12, pm, k4`; `K to m, sm, p12, sm, k to
     /// end`), its parts between them in working order, each read as a body of its own (a run
     /// `to m` runs to the end of its part); empty where no marker parts the row (or where its
@@ -398,6 +398,18 @@ impl BodyParser<'_> {
                     if let [El::Count(n)] = inner.as_slice() {
                         els.push(El::Count(*n));
                         continue;
+                    }
+                    // `[k1, p1] to end`, `(k2, p2) across`: the group repeated across the row.
+                    if let Some(Tok::Text(t)) = self.peek().cloned() {
+                        let open_ended = until(&t).filter(|u| !matches!(u, Until::Times(_)));
+                        if let (Some(u), 0) = (open_ended, depth) {
+                            self.at += 1;
+                            self.instruction += 1;
+                            els.push(El::RepStart(self.instruction));
+                            els.extend(inner);
+                            els.push(El::RepEnd(u, self.instruction));
+                            continue;
+                        }
                     }
                     let mut n = 1;
                     if let Some(Tok::Text(t)) = self.peek().cloned() {

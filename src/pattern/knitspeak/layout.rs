@@ -130,7 +130,7 @@ pub(super) fn lay_out(rows: &[RowPlan], widths: &[(String, WidthNote)]) -> Resul
                 instructions,
             });
         }
-        super::as_they_appear::settle(&appearing(rows), &mut written)?;
+        super::as_they_appear::settle(&faces(rows), &mut written)?;
         return StitchPattern::from_written_rows("knitspeak", &written);
     }
 
@@ -228,7 +228,7 @@ pub(super) fn lay_out(rows: &[RowPlan], widths: &[(String, WidthNote)]) -> Resul
             instructions: r.over(n),
         })
         .collect();
-    super::as_they_appear::settle(&appearing(rows), &mut written)?;
+    super::as_they_appear::settle(&faces(rows), &mut written)?;
     let cells = cells_from_rows(&written)?;
     // Columns (from the piece's left edge) where each row has an instruction boundary with as
     // many loops worked as stitches made so far.
@@ -269,9 +269,9 @@ pub(super) fn lay_out(rows: &[RowPlan], widths: &[(String, WidthNote)]) -> Resul
     StitchPattern::from_rows("knitspeak", normalised(window, width))
 }
 
-/// Per row, whether it works its stitches as they appear ([`super::as_they_appear`]).
-fn appearing(rows: &[RowPlan]) -> Vec<bool> {
-    rows.iter().map(|r| r.body.as_they_appear).collect()
+/// Per row, how it takes its faces ([`super::as_they_appear`]).
+fn faces(rows: &[RowPlan]) -> Vec<super::as_they_appear::Faces> {
+    rows.iter().map(|r| r.body.faces).collect()
 }
 
 /// An all-over row's edges must keep the stitch count: a decrease or increase there

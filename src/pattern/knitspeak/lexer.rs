@@ -4,7 +4,45 @@
 
 /// Words a statement's header starts with (lower case). Also how a Knitspeak text is told from
 /// a chart ([`super::looks_like_knitspeak`]), so both read headers alike.
-const HEADER_WORDS: [&str; 4] = ["row", "rnd", "round", "all "];
+const HEADER_WORDS: [&str; 11] = [
+    "row",
+    "rnd",
+    "round",
+    "all ",
+    "every ",
+    "odd ",
+    "even ",
+    "set-up ",
+    "set up ",
+    "setup ",
+    "foundation ",
+];
+
+/// `text` with the em dash that Barbara Walker's treasuries put after a row header (`Row 1
+/// (Wrong side)—Knit.`) read as the `:` other texts put there.
+pub(super) fn walker_dashes(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.contains('\u{2014}') {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let lines: Vec<String> = text
+        .lines()
+        .map(|line| {
+            let lower = line.trim_start().to_lowercase();
+            let dash = line.find('\u{2014}');
+            let colon = line.find(':');
+            match dash {
+                Some(d)
+                    if HEADER_WORDS.iter().any(|w| lower.starts_with(w))
+                        && colon.is_none_or(|c| d < c) =>
+                {
+                    format!("{}:{}", &line[..d], &line[d + '\u{2014}'.len_utf8()..])
+                }
+                _ => line.to_string(),
+            }
+        })
+        .collect();
+    std::borrow::Cow::Owned(lines.join("\n"))
+}
 
 /// Whether `lower` (lower case) starts with a row header: a header word, with a `:` after it.
 pub(super) fn opens_statement(lower: &str) -> bool {

@@ -118,7 +118,7 @@ pub(super) fn resolve(rows: &[RowPlan], setup: &[RowPlan]) -> Result<Option<Vec<
             before,
             count: row.body.count,
             notes: row.body.notes.clone(),
-            as_they_appear: row.body.as_they_appear,
+            faces: row.body.faces,
             ..Body::default()
         });
     }

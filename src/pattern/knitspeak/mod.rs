@@ -32,7 +32,11 @@
 //!   add), but not knitted, since the repeat covers the surface. `These 4 rows form the
 //!   pattern.` is a note checked against the rows given. `sl1, k1, psso`, `sl1, k2tog, psso`,
 //!   `sl2, k1, p2sso` (and `p1`) written as separate instructions read as `skp`, `sk2p`,
-//!   `cdd` and `cddp`. `*k1, p1; rep from *, ending k1` ends the row with those stitches.
+//!   `cdd` and `cddp`. `*k1, p1; rep from *, ending k1` ends the row with those stitches;
+//!   `[k1, p1] to end` / `(k1, p1) across` repeats a group across the row; `As row 1` works
+//!   row 1 again; `K the purl sts and p the knit sts` swaps the faces of the row below (seed
+//!   from a rib). Barbara Walker's em dash after a header (`Row 1 (Wrong side)—Knit.`) reads
+//!   as a `:`.
 //! - Sides: a header's `(RS)` / `(WS)` sets the side of its rows; other rows of flat knitting
 //!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
 //!   number of rows turns over between repeats, so the chart holds the rows twice, the second
@@ -137,7 +141,8 @@ enum Given {
 /// Reads Knitspeak text (see the module docs) into a pattern whose chart is as seen on the
 /// right side, row 1 at the bottom.
 pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
-    let lexed = statements(text);
+    let text = lexer::walker_dashes(text);
+    let lexed = statements(&text);
     let statements = lexed.rows;
     if statements.is_empty() {
         return Err(KnitError::Pattern(
@@ -165,13 +170,12 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
         }
         match same_as::same_as(body) {
             None => {
-                let parsed = if as_they_appear::as_they_appear(body) {
-                    Body {
-                        as_they_appear: true,
+                let parsed = match as_they_appear::as_they_appear(body) {
+                    Some(faces) => Body {
+                        faces,
                         ..parse_body("Knit.", &what)?
-                    }
-                } else {
-                    parse_body(body, &what)?
+                    },
+                    None => parse_body(body, &what)?,
                 };
                 sheet.cover(rows, &what, read.len())?;
                 read.push((what, Given::Body(parsed)));
@@ -295,5 +299,5 @@ fn setup_plans<'a>(
 
 /// Whether `text` looks like Knitspeak rather than a symbol chart: it starts with a row header.
 pub fn looks_like_knitspeak(text: &str) -> bool {
-    opens_statement(&after_titles(text).to_lowercase())
+    opens_statement(&after_titles(&lexer::walker_dashes(text)).to_lowercase())
 }

@@ -28,6 +28,7 @@ pub(super) fn same_as(body: &str) -> Option<SameAs> {
         "work as ",
         "work same as ",
         "same as ",
+        "as ",
     ]
     .iter()
     .find_map(|p| lower.strip_prefix(p))?;
