@@ -69,6 +69,7 @@ FLOORS: dict[str, tuple[float, float]] = {
     "twisted-rib-2x2": (0.855, 0.866),
     "twisted-eyelet-rib": (0.107, 0.325),
     "waffle": (0.793, 0.793),
+    "walker-eyelets": (0.486, 0.485),
     "wave": (0.627, 0.626),
     "welt": (0.592, 0.631),
     "zigzag-lace": (0.196, 0.211),
@@ -102,9 +103,9 @@ def tube(repeat: int) -> knitwear.GridSurface:
     return knitwear.GridSurface(pos, nrm, cyclic_u=True)
 
 
-def test_the_corpus_has_45_patterns_each_with_its_floor() -> None:
+def test_the_corpus_has_46_patterns_each_with_its_floor() -> None:
     names = sorted(f.stem for f in FILES)
-    assert len(names) >= 45, names
+    assert len(names) >= 46, names
     assert names == sorted(FLOORS), set(names) ^ set(FLOORS)
 
 
