@@ -1380,6 +1380,9 @@ fn set_up_rows_are_read_but_not_repeated() {
 fn a_slipped_stitch_passed_over_reads_as_its_decrease() {
     for (written, one_phrase) in [
         ("*Sl1, k1, psso, yo; rep from *", "*skp, yo; rep from *"),
+        // British patterns write `s1` for `sl1`.
+        ("*S1, k1, psso, yo; rep from *", "*skp, yo; rep from *"),
+        ("*S1 wyif, k1; rep from *", "*sl1 wyif, k1; rep from *"),
         (
             "*Yo, sl 1, k2tog, pass slipped st over, yo, k1; rep from *",
             "*yo, sk2p, yo, k1; rep from *",

@@ -72,8 +72,8 @@ pub(crate) enum Reads {
     },
     /// A slip with a count: a name (first match, as for [`Reads::KnitPurl`]), an optional
     /// count, then any of the yarn words and the words that change nothing: `sl1`,
-    /// `sl 2 pwise wyif`, `slip 1 with yarn in back`. With no yarn word the yarn is held on the
-    /// wrong side ([`Stitched::slip_default`]).
+    /// `sl 2 pwise wyif`, `slip 1 with yarn in back`, and `s1` as British patterns write it.
+    /// With no yarn word the yarn is held on the wrong side ([`Stitched::slip_default`]).
     Slip {
         names: &'static [&'static str],
         /// Yarn words: (word, yarn in front).
@@ -471,6 +471,12 @@ impl Reads {
                 spelled_out,
                 ignored,
             } => {
+                // `s1`, `s2 wyif` (British patterns): `s` with a count is `sl`.
+                let british = norm
+                    .strip_prefix('s')
+                    .filter(|r| r.starts_with(|c: char| c.is_ascii_digit()))
+                    .map(|r| format!("sl{r}"));
+                let norm = british.as_deref().unwrap_or(norm);
                 let rest = names.iter().find_map(|name| norm.strip_prefix(name))?;
                 let (count, modifiers) = count_and_rest(rest)?;
                 let mut words = modifiers.to_string();
