@@ -1518,3 +1518,30 @@ fn walker_dashes_bracket_runs_and_swapped_faces_read() {
     ];
     all_read_as(&swapped, &seed, same_cells);
 }
+
+/// The ways printed patterns end a repeat: `rep to end`, `rep * to end`, `*k2, p2* rep to
+/// end`, `work from * to end`, `[k2, p2] rep to end`, `until 2 sts remain`, `across to last
+/// 2 sts`.
+#[test]
+fn repeats_end_as_printed_patterns_end_them() {
+    let rib = ks("Row 1 (RS): K2, *p2, k2; rep from *.\nRow 2: P2, *k2, p2; rep from *.");
+    let rows = [
+        "*P2, k2; rep to end",
+        "*P2, k2; rep * to end",
+        "*P2, k2; repeat * to end",
+        "*P2, k2* rep to end",
+        "*P2, k2; work from * to end",
+        "[P2, k2] rep to end",
+    ];
+    let texts: Vec<String> = rows
+        .iter()
+        .map(|r| format!("Row 1 (RS): K2, {r}.\nRow 2: P2, *k2, p2; rep from *."))
+        .collect();
+    let texts: Vec<&str> = texts.iter().map(String::as_str).collect();
+    all_read_as(&texts, &rib, same_cells);
+    let ending = [
+        "Row 1 (RS): *K2, p2; rep from * until 2 sts remain, k2.\nRow 2: P2, *k2, p2; rep from *.",
+        "Row 1 (RS): *K2, p2; rep from * across to last 2 sts, k2.\nRow 2: P2, *k2, p2; rep from *.",
+    ];
+    all_read_as(&ending, &rib, same_up_to_shift);
+}

@@ -380,7 +380,16 @@ pub(crate) const VOCABULARY: &[Entry] = {
             offered_with_count: &[],
         },
         Entry {
-            reads: Reads::RepeatFrom(&["rep from *", "repeat from *"]),
+            // The longer spellings first: `rep` alone (`*k2, p2; rep to end`) is read last.
+            reads: Reads::RepeatFrom(&[
+                "rep from *",
+                "repeat from *",
+                "rep *",
+                "repeat *",
+                "work from *",
+                "repeat",
+                "rep",
+            ]),
             offered: &[
                 "rep from *",
                 "rep from * to end",

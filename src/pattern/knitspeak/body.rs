@@ -217,6 +217,11 @@ fn split_times(s: &str) -> (String, usize) {
 fn until(s: &str) -> Option<Until> {
     let s = s.trim().to_lowercase();
     let s = s.trim_start_matches("and").trim();
+    // `across to last 2 sts`: `across` says nothing more than `to`.
+    let s = s
+        .strip_prefix("across to ")
+        .map_or(s.to_string(), |r| format!("to {r}"));
+    let s = s.as_str();
     match s {
         "" | "to end" | "to the end" | "across" | "to end of row" | "to end of rnd"
         | "to end of round" | "across row" | "all sts" | "all" | "around" | "all around" => {
@@ -227,6 +232,19 @@ fn until(s: &str) -> Option<Until> {
     }
     if let Some(n) = to_marker(s) {
         return Some(Until::Marker(n));
+    }
+    // `until 2 sts remain`, `until 1 st remains`.
+    if let Some(rest) = s.strip_prefix("until ") {
+        let n = rest
+            .trim_end_matches("remain")
+            .trim_end_matches("remains")
+            .trim_end_matches("are left")
+            .trim()
+            .trim_end_matches("stitches")
+            .trim_end_matches("sts")
+            .trim_end_matches("st")
+            .trim();
+        return numbers::count(n).filter(|&n| n >= 1).map(Until::Last);
     }
     if let Some(rest) = s
         .strip_prefix("to last")
@@ -401,7 +419,10 @@ impl BodyParser<'_> {
                     }
                     // `[k1, p1] to end`, `(k2, p2) across`: the group repeated across the row.
                     if let Some(Tok::Text(t)) = self.peek().cloned() {
-                        let open_ended = until(&t).filter(|u| !matches!(u, Until::Times(_)));
+                        // `[k2, p2] rep to end` says it twice.
+                        let lower = t.trim().to_lowercase();
+                        let said = after_repeat_from(&lower).unwrap_or(&lower);
+                        let open_ended = until(said).filter(|u| !matches!(u, Until::Times(_)));
                         if let (Some(u), 0) = (open_ended, depth) {
                             self.at += 1;
                             self.instruction += 1;

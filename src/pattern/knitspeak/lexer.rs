@@ -190,7 +190,7 @@ pub(super) fn tokens(body: &str) -> Vec<Tok> {
         }
         text.clear();
     };
-    for ch in body.chars() {
+    for (at, ch) in body.char_indices() {
         match ch {
             ',' | ';' | '.' => {
                 flush(&mut text, &mut out);
@@ -198,7 +198,23 @@ pub(super) fn tokens(body: &str) -> Vec<Tok> {
             }
             // The `*` of `rep from *` belongs to its text: the body grammar reads that phrase
             // whole (see `vocabulary::after_repeat_from`).
-            '*' if text.trim_end().to_lowercase().ends_with("from") => text.push(ch),
+            '*' if ["from", "rep", "repeat"]
+                .iter()
+                .any(|w| text.trim_end().to_lowercase().ends_with(w)) =>
+            {
+                text.push(ch)
+            }
+            // `*k2, p2* rep to end`: a `*` that closes the repeat it opened, before the `rep`
+            // that ends it, is no new repeat.
+            '*' if out.contains(&Tok::Star)
+                && body[at + 1..]
+                    .trim_start_matches([' ', ',', ';'])
+                    .to_lowercase()
+                    .starts_with("rep") =>
+            {
+                flush(&mut text, &mut out);
+                out.push(Tok::Sep);
+            }
             '*' => {
                 flush(&mut text, &mut out);
                 if out.last() != Some(&Tok::Star) {

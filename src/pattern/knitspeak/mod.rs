@@ -41,7 +41,9 @@
 //!   alternate from it (row 1 is RS when nothing says otherwise). Flat knitting with an odd
 //!   number of rows turns over between repeats, so the chart holds the rows twice, the second
 //!   time on the other side (rows `h+1 .. 2h` in messages).
-//! - Repeats: `*k2, p2; rep from *`, `rep from * to end` / `across` / `around`, `rep from * to last 3
+//! - Repeats: `*k2, p2; rep from *` (also `rep to end`, `rep * to end`, `*k2, p2* rep to end`,
+//!   `work from * to end`, `[k2, p2] rep to end`, `until 2 sts remain`, `across to last 2
+//!   sts`), `rep from * to end` / `across` / `around`, `rep from * to last 3
 //!   sts, k3` (the stitches after the repeat must be exactly that many), `rep from * 2 more
 //!   times` (a fixed count), stitches before and after the repeat, `[k1, p1] 3 times`, `(yo,
 //!   k1) twice`, `k2tog 3 times`, `k to end` / `k to last 3 sts` / `Knit.` / `Purl.` (a
