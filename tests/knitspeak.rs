@@ -1410,6 +1410,10 @@ fn a_slipped_stitch_passed_over_reads_as_its_decrease() {
             "Row 1 (RS): *K1, psso, yo; rep from *.\nRow 2: Purl.",
             "instruction 2 (\"psso\"): passes slipped stitches over",
         ),
+        (
+            "Row 1 (RS): *(k1, p1, k1) in next st, p3tog; rep from *.\nRow 2: Purl.",
+            "(\"in next st\"): works 3 stitches into one loop (a 1-to-3 increase)",
+        ),
     ]);
 }
 

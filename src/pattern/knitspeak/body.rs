@@ -290,6 +290,28 @@ fn passes_over(lower: &str) -> Option<usize> {
     }
 }
 
+/// `in next st`, `into same st`, `all in next st`: what follows a bracket of stitches worked
+/// into one loop (`(k1, p1, k1) in next st`).
+fn worked_into_one(text: &str) -> bool {
+    let t = text.trim().to_lowercase();
+    let t = t.trim_start_matches("all ");
+    ["in ", "into "].iter().any(|w| {
+        t.strip_prefix(w).is_some_and(|r| {
+            let r = r.trim_start_matches("the ");
+            [
+                "next st",
+                "next stitch",
+                "same st",
+                "same stitch",
+                "1 st",
+                "one st",
+            ]
+            .iter()
+            .any(|s| r.starts_with(s))
+        })
+    })
+}
+
 /// `to m`, `to next marker`, `to 2 sts before m`, `to st before m` (lower case, trimmed) ->
 /// the stitches the run leaves before the marker.
 fn to_marker(s: &str) -> Option<usize> {
@@ -430,6 +452,24 @@ impl BodyParser<'_> {
                             els.extend(inner);
                             els.push(El::RepEnd(u, self.instruction));
                             continue;
+                        }
+                    }
+                    // `(k1, p1, k1) in next st`: several stitches worked into one loop.
+                    if let Some(Tok::Text(t)) = self.peek().cloned() {
+                        if worked_into_one(&t) {
+                            let made = inner
+                                .iter()
+                                .filter(|el| matches!(el, El::Stitch(_)))
+                                .count();
+                            return Err(self.err(
+                                &t,
+                                &format!(
+                                    "works {made} stitches into one loop (a 1-to-{made} \
+                                     increase): knitwear does not knit a loop that several \
+                                     stitches are pulled through yet, even where a decrease in \
+                                     the same row balances it"
+                                ),
+                            ));
                         }
                     }
                     let mut n = 1;
