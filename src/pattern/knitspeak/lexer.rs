@@ -19,29 +19,33 @@ const HEADER_WORDS: [&str; 11] = [
 ];
 
 /// `text` with the em dash that Barbara Walker's treasuries put after a row header (`Row 1
-/// (Wrong side)—Knit.`) read as the `:` other texts put there.
+/// (Wrong side)—Knit.`) read as the `:` other texts put there: each dash whose sentence
+/// (from the line's start or the last full stop) opens with a header word and holds no `:`.
 pub(super) fn walker_dashes(text: &str) -> std::borrow::Cow<'_, str> {
-    if !text.contains('\u{2014}') {
+    const DASH: char = '\u{2014}';
+    if !text.contains(DASH) {
         return std::borrow::Cow::Borrowed(text);
     }
-    let lines: Vec<String> = text
-        .lines()
-        .map(|line| {
-            let lower = line.trim_start().to_lowercase();
-            let dash = line.find('\u{2014}');
-            let colon = line.find(':');
-            match dash {
-                Some(d)
-                    if HEADER_WORDS.iter().any(|w| lower.starts_with(w))
-                        && colon.is_none_or(|c| d < c) =>
-                {
-                    format!("{}:{}", &line[..d], &line[d + '\u{2014}'.len_utf8()..])
-                }
-                _ => line.to_string(),
+    let mut out = String::with_capacity(text.len());
+    // The sentence so far: since the line's start or the last full stop.
+    let mut sentence = String::new();
+    for ch in text.chars() {
+        if ch == DASH {
+            let lower = sentence.trim_start().to_lowercase();
+            if HEADER_WORDS.iter().any(|w| lower.starts_with(w)) && !lower.contains(':') {
+                out.push(':');
+                sentence.push(':');
+                continue;
             }
-        })
-        .collect();
-    std::borrow::Cow::Owned(lines.join("\n"))
+        }
+        out.push(ch);
+        if matches!(ch, '.' | '\n') {
+            sentence.clear();
+        } else {
+            sentence.push(ch);
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }
 
 /// Whether `lower` (lower case) starts with a row header: a header word, with a `:` after it.
