@@ -1426,13 +1426,24 @@ fn notes_that_name_the_repeating_rows_are_checked() {
         "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.\nThese 2 rows form the pattern.",
         "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *. These two rows form the patt.",
         "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.\nLast 2 rows form pattern.",
+        // How long to go on is the surface's to say.
+        "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.\n\
+         Repeat rows 1-2 until piece measures 10 in from cast-on edge.",
+        "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.\nRep rows 1-2 throughout.",
+        "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.\nContinue in pattern as set.",
     ];
     all_read_as(&noted, &rib, same_cells);
-    refused(&[(
+    refused(&[
+        (
+            "Row 1 (RS): Knit.\nRow 2: Purl.\nRepeat rows 1-2 and blah blah.",
+            "cannot read \"and blah blah\"",
+        ),
+        (
         "Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Knit.\nRow 4: Knit.\nLast 2 rows form the pattern.",
         "the pattern gives 4 rows (1 to 4), and knitwear repeats every row it is given, not the \
          last 2",
-    )]);
+        ),
+    ]);
     assert!(same_cells(
         &ks("Row 1 (RS): *K2tog through back loop, yo; rep from *.\nRow 2: Purl."),
         &ks("Row 1 (RS): *K2tog tbl, yo; rep from *.\nRow 2: Purl."),

@@ -356,19 +356,6 @@ impl RowSheet {
     }
 }
 
-/// Words a pattern may end a `Repeat rows` note with that change nothing here.
-const REPEAT_TAILS: [&str; 9] = [
-    "for pattern",
-    "for patt",
-    "for pat",
-    "for the pattern",
-    "for stitch pattern",
-    "to desired length",
-    "for desired length",
-    "until desired length",
-    "as desired",
-];
-
 /// Checks a note (`Repeat rows 1-4.`) against the `height` rows the headers give: one that
 /// repeats every row says what the chart does anyway; one that repeats only some is an error
 /// (the rows outside it are knitted once, and the chart repeats all of its rows), as is one
@@ -415,7 +402,21 @@ pub(super) fn check_repeat_note(note: &str, first_row: usize, height: usize) -> 
         }
     }
     let tail = tail.trim_end_matches('.').trim();
-    if !tail.is_empty() && !REPEAT_TAILS.contains(&tail) {
+    // What a note may end with changes nothing here: `for pattern`, and how long to go on
+    // (`until piece measures 10 in`, `throughout`, `as required`), which is the surface's to
+    // say.
+    let how_long = [
+        "until ",
+        "for ",
+        "as ",
+        "to desired",
+        "to the desired",
+        "to length",
+    ]
+    .iter()
+    .any(|w| tail.starts_with(w))
+        || ["throughout", "to end"].contains(&tail);
+    if !tail.is_empty() && !how_long {
         return Err(unread(tail));
     }
     if first == 0 || last < first {

@@ -75,6 +75,13 @@ fn ignorable(line: &str) -> bool {
         "(multiple of",
         "work rows",
         "work rnds",
+        // `Continue in pattern as set.`: the rows go on repeating, as they do here.
+        "continue in patt",
+        "cont in patt",
+        "continue as set",
+        "cont as set",
+        "continue as established",
+        "cont as established",
     ]
     .iter()
     .any(|w| l.starts_with(w))
