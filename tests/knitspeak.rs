@@ -1562,3 +1562,33 @@ fn repeats_end_as_printed_patterns_end_them() {
     ];
     all_read_as(&ending, &rib, same_up_to_shift);
 }
+
+/// Patterns are pasted with the text around them: a title without brackets, `Cast on a
+/// multiple of 4 sts + 2.`, `Note: ...`, `Gauge: ...`, `Pattern:`, and `Bind off all sts.`
+/// at the end. Such a text is told from a chart and reads as its rows; a width note among the
+/// lines before the rows is still checked.
+#[test]
+fn the_text_around_a_pattern_is_passed_over() {
+    let rib = ks("Row 1 (RS): K2, *p2, k2; rep from *.\nRow 2: P2, *k2, p2; rep from *.");
+    let rows =
+        "Row 1 (RS): K2, *p2, k2; rep from * to end.\nRow 2 (WS): P2, *k2, p2; rep from * to end.";
+    let texts = [
+        format!("Two by two rib\n{rows}"),
+        format!("Cast on a multiple of 4 sts + 2.\n{rows}\nRep these 2 rows for pattern."),
+        format!("Note: slip sts purlwise.\nGauge: 20 sts and 28 rows = 4 in.\nPattern:\n{rows}"),
+        format!("CO 22 sts.\n{rows}\nNote: the rib draws in.\nBind off all sts in pattern."),
+    ];
+    for text in &texts {
+        let read = StitchPattern::from_text(text).unwrap_or_else(|e| panic!("{text}: {e}"));
+        assert!(same_cells(&read, &rib), "{text}:\n{}", read.chart());
+    }
+    refused(&[
+        (
+            &format!("Cast on a multiple of 4 sts + 3.\n{rows}"),
+            "says the pattern is worked over a multiple of 4 stitches plus 3",
+        ),
+        ("Stitch 1: Knit.", "\"Stitch 1\" is not a row header"),
+    ]);
+    // A chart is still a chart.
+    assert_eq!(StitchPattern::from_text("kkpp\nkkpp").unwrap().width(), 4);
+}

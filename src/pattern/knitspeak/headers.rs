@@ -188,7 +188,7 @@ fn number(s: &str, header: &str) -> Result<usize> {
     Err(bad_header(header))
 }
 
-fn bad_header(header: &str) -> KnitError {
+pub(super) fn bad_header(header: &str) -> KnitError {
     KnitError::Pattern(format!(
         "\"{}\" is not a row header: write \"Row 1 (RS):\", \"Rows 2 and 4:\", \"Rnd 3:\" or \
          \"All WS rows:\"",

@@ -53,16 +53,23 @@ pub(super) fn opens_statement(lower: &str) -> bool {
     HEADER_WORDS.iter().any(|w| lower.starts_with(w)) && lower.contains(':')
 }
 
-/// `text` without the title lines in parentheses it opens with.
-pub(super) fn after_titles(text: &str) -> &str {
-    let mut rest = text.trim_start();
-    while let Some(line) = rest.lines().next() {
-        if !title(line) {
-            break;
-        }
-        rest = rest[line.len()..].trim_start();
-    }
-    rest
+/// Whether `line` opens a row statement: a header that reads as rows (`Row 1 (RS):`,
+/// `All WS rows:`, `Set-up row:`), then its `:`. `Note:` and `Gauge:` do not.
+pub(super) fn opens_row_statement(line: &str) -> bool {
+    let lower = line.trim().to_lowercase();
+    opens_statement(&lower)
+        && lower
+            .split_once(':')
+            .is_some_and(|(header, _)| super::headers::parse_header(header).is_ok())
+}
+
+/// Whether `line`, met before the first row, is the text around a pattern rather than a row:
+/// a title (`(Seed stitch)`, `Seed Stitch`), a note (`Note: slip sts purlwise.`, `Gauge:
+/// ...`), a cast-on (`Cast on a multiple of 4 sts + 2.`). A line that opens with a row word
+/// is read as a row, so that a malformed header is reported, not skipped.
+fn preamble(line: &str) -> bool {
+    let lower = line.trim().to_lowercase();
+    title(line) || !HEADER_WORDS.iter().any(|w| lower.starts_with(w))
 }
 
 /// Lines that say something true of the pattern but nothing a chart needs.
@@ -82,6 +89,12 @@ fn ignorable(line: &str) -> bool {
         "cont as set",
         "continue as established",
         "cont as established",
+        // Casting on and binding off: knitwear does both at the surface's edges.
+        "cast on",
+        "co ",
+        "bind off",
+        "bo ",
+        "cast off",
     ]
     .iter()
     .any(|w| l.starts_with(w))
@@ -118,21 +131,44 @@ pub(super) struct Statements {
     /// The lines and sentences a chart needs nothing from (`Repeat rows 1-4.`, `Multiple of
     /// 6 sts plus 5.`), as written, for the checks that read them.
     pub(super) notes: Vec<String>,
+    /// The headers of the statements skipped before the first row (`Note`, `Gauge`,
+    /// `Stitch 1`), for the message when no row follows.
+    pub(super) skipped: Vec<String>,
 }
 
 /// Splits the text into `(header, body)` statements. A header runs to its `:`; a body runs to
-/// the next header (a new line, or a row word after a full stop). Title lines in parentheses
-/// before the first statement are skipped.
+/// the next header (a new line, or a row word after a full stop). The lines before the first
+/// row that are no row (titles, notes, a cast-on: [`preamble`]) are skipped, a width note
+/// among them kept; so are `Note:` statements.
 pub(super) fn statements(text: &str) -> Statements {
     let mut out: Vec<(String, String)> = Vec::new();
     let mut notes = Vec::new();
+    let mut skipped = Vec::new();
     for line in text.lines() {
         let mut rest = line.trim();
-        if out.is_empty() && title(rest) {
+        if out.is_empty() && preamble(rest) {
             // `(multiple of 4 sts, plus 2)` opening a pattern is a note the layout checks.
-            if super::width_note::read(rest).is_some() {
-                notes.push(rest.to_string());
+            // `Cast on a multiple of 4 sts + 2.` says what its note says.
+            let note = ["cast on a ", "cast on ", "co a ", "co "]
+                .iter()
+                .find_map(|w| {
+                    rest.get(..w.len())
+                        .filter(|h| h.eq_ignore_ascii_case(w))
+                        .map(|_| &rest[w.len()..])
+                })
+                .unwrap_or(rest);
+            if super::width_note::read(note).is_some() {
+                notes.push(note.to_string());
+            } else if let Some((header, _)) = rest.split_once(':') {
+                skipped.push(header.trim().to_string());
             }
+            continue;
+        }
+        let lower = rest.to_lowercase();
+        if ["note:", "notes:", "note ", "nb:"]
+            .iter()
+            .any(|w| lower.starts_with(w))
+        {
             continue;
         }
         while !rest.is_empty() {
@@ -157,7 +193,11 @@ pub(super) fn statements(text: &str) -> Statements {
             rest = after[end..].trim();
         }
     }
-    Statements { rows: out, notes }
+    Statements {
+        rows: out,
+        notes,
+        skipped,
+    }
 }
 
 /// Where the next statement starts in `s`: a row word right after a full stop.

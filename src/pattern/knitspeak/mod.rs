@@ -120,7 +120,7 @@ pub(crate) use layout::{lcm, normalised, shorter_way, wrap};
 use self::body::{parse_body, Body};
 use self::headers::{parse_header, RowSheet};
 use self::layout::{lay_out, RowPlan};
-use self::lexer::{after_titles, opens_statement, statements};
+use self::lexer::statements;
 use self::same_as::SameAs;
 use self::width_note::WidthNote;
 use super::StitchPattern;
@@ -146,6 +146,10 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
     let text = lexer::walker_dashes(text);
     let lexed = statements(&text);
     let statements = lexed.rows;
+    // Only text around a pattern, one line of it a header that is no row's (`Stitch 1:`).
+    if let (true, Some(header)) = (statements.is_empty(), lexed.skipped.first()) {
+        return Err(headers::bad_header(header));
+    }
     if statements.is_empty() {
         return Err(KnitError::Pattern(
             "no Knitspeak rows found: write e.g. \"Row 1 (RS): *k2, p2; rep from *.\"".into(),
@@ -299,7 +303,10 @@ fn setup_plans<'a>(
     plans
 }
 
-/// Whether `text` looks like Knitspeak rather than a symbol chart: it starts with a row header.
+/// Whether `text` looks like Knitspeak rather than a symbol chart: some line opens with a row
+/// header (`Row 1 (RS):`), whatever title, notes or cast-on come before it.
 pub fn looks_like_knitspeak(text: &str) -> bool {
-    opens_statement(&after_titles(&lexer::walker_dashes(text)).to_lowercase())
+    lexer::walker_dashes(text)
+        .lines()
+        .any(lexer::opens_row_statement)
 }
