@@ -552,7 +552,7 @@ impl BodyParser<'_> {
         ]
         .iter()
         .any(|w| lower.starts_with(w))
-            || super::lexer::forms_the_pattern(lower)
+            || super::headers::forms_the_pattern(lower)
         {
             if width_note(lower) {
                 // The sentence runs to the body's end: `Multiple of 4 sts, plus 2.`

@@ -356,6 +356,20 @@ impl RowSheet {
     }
 }
 
+/// `These 4 rows form the pattern.`, `Last 2 rnds form patt.` (lower case): a note on which
+/// rows repeat, which [`check_repeat_note`] checks.
+pub(super) fn forms_the_pattern(lower: &str) -> bool {
+    let l = lower.trim();
+    ["these ", "the last ", "last "]
+        .iter()
+        .any(|w| l.starts_with(w))
+        && [" rows ", " row ", " rnds ", " rounds "]
+            .iter()
+            .any(|w| l.contains(w))
+        && (l.contains(" form ") || l.contains(" forms "))
+        && !l.contains(':')
+}
+
 /// Checks a note (`Repeat rows 1-4.`) against the `height` rows the headers give: one that
 /// repeats every row says what the chart does anyway; one that repeats only some is an error
 /// (the rows outside it are knitted once, and the chart repeats all of its rows), as is one
@@ -363,7 +377,7 @@ impl RowSheet {
 /// (`Multiple of 6 sts plus 5.`) pass.
 pub(super) fn check_repeat_note(note: &str, first_row: usize, height: usize) -> Result<()> {
     let lower = note.trim().to_lowercase();
-    if super::lexer::forms_the_pattern(&lower) {
+    if forms_the_pattern(&lower) {
         return check_rows_formed(note, &lower, first_row, height);
     }
     let Some(rest) = strip_any(&lower, &["repeat ", "rep "]) else {

@@ -99,21 +99,7 @@ fn ignorable(line: &str) -> bool {
     .iter()
     .any(|w| l.starts_with(w))
         && !l.contains(':')
-        || forms_the_pattern(&l)
-}
-
-/// `These 4 rows form the pattern.`, `Last 2 rnds form patt.` (lower case): a note on which
-/// rows repeat, which [`super::headers::check_repeat_note`] checks.
-pub(super) fn forms_the_pattern(lower: &str) -> bool {
-    let l = lower.trim();
-    ["these ", "the last ", "last "]
-        .iter()
-        .any(|w| l.starts_with(w))
-        && [" rows ", " row ", " rnds ", " rounds "]
-            .iter()
-            .any(|w| l.contains(w))
-        && (l.contains(" form ") || l.contains(" forms "))
-        && !l.contains(':')
+        || super::headers::forms_the_pattern(&l)
 }
 
 /// Whether `line` is a title or comment in parentheses, as many pasted patterns open with
