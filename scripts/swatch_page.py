@@ -32,7 +32,8 @@ from. Charts read top row first, as seen on the right side (`k` knit, `p` purl, 
 `/` k2tog, `\\` ssk; other symbols are named in the legend under the chart). To knit one
 again, put it in a Blender Text and choose Pattern > From File, or pass it to
 `knitwear.Pattern.from_chart`.
-The grammar: [knitspeak.md](knitspeak.md) and [python.md](python.md); the stitches: [stitches.md](stitches.md).
+The grammar: [knitspeak.md](knitspeak.md) and [python.md](python.md); the stitches:
+[stitches.md](stitches.md).
 """
 
 
