@@ -1577,6 +1577,10 @@ fn the_text_around_a_pattern_is_passed_over() {
         format!("Cast on a multiple of 4 sts + 2.\n{rows}\nRep these 2 rows for pattern."),
         format!("Note: slip sts purlwise.\nGauge: 20 sts and 28 rows = 4 in.\nPattern:\n{rows}"),
         format!("CO 22 sts.\n{rows}\nNote: the rib draws in.\nBind off all sts in pattern."),
+        // A title on the first row's line, and the whole text on one line (the add-on's
+        // field): only what comes before the first row is passed over.
+        format!("Two by two rib. {rows}"),
+        format!("Two by two rib. Cast on a multiple of 4 sts + 2. {rows}").replace('\n', " "),
     ];
     for text in &texts {
         let read = StitchPattern::from_text(text).unwrap_or_else(|e| panic!("{text}: {e}"));
@@ -1588,6 +1592,10 @@ fn the_text_around_a_pattern_is_passed_over() {
             "says the pattern is worked over a multiple of 4 stitches plus 3",
         ),
         ("Stitch 1: Knit.", "\"Stitch 1\" is not a row header"),
+        (
+            &format!("Rib. Cast on a multiple of 4 sts + 3. {rows}").replace('\n', " "),
+            "says the pattern is worked over a multiple of 4 stitches plus 3",
+        ),
     ]);
     // A chart is still a chart.
     assert_eq!(StitchPattern::from_text("kkpp\nkkpp").unwrap().width(), 4);

@@ -133,22 +133,37 @@ pub(super) fn statements(text: &str) -> Statements {
     for line in text.lines() {
         let mut rest = line.trim();
         if out.is_empty() && preamble(rest) {
+            // A row may follow on the same line (`Seed stitch. Row 1: *k1, p1; rep from *.`):
+            // only the text before it is passed over.
+            let row = first_row_statement(rest);
+            let before = rest[..row.unwrap_or(rest.len())].trim();
             // `(multiple of 4 sts, plus 2)` opening a pattern is a note the layout checks.
             // `Cast on a multiple of 4 sts + 2.` says what its note says.
-            let note = ["cast on a ", "cast on ", "co a ", "co "]
-                .iter()
-                .find_map(|w| {
-                    rest.get(..w.len())
-                        .filter(|h| h.eq_ignore_ascii_case(w))
-                        .map(|_| &rest[w.len()..])
-                })
-                .unwrap_or(rest);
-            if super::width_note::read(note).is_some() {
-                notes.push(note.to_string());
-            } else if let Some((header, _)) = rest.split_once(':') {
-                skipped.push(header.trim().to_string());
+            let sentences: Vec<&str> = if title(before) {
+                vec![before]
+            } else {
+                before.split('.').map(str::trim).collect()
+            };
+            for sentence in sentences {
+                let note = ["cast on a ", "cast on ", "co a ", "co "]
+                    .iter()
+                    .find_map(|w| {
+                        sentence
+                            .get(..w.len())
+                            .filter(|h| h.eq_ignore_ascii_case(w))
+                            .map(|_| &sentence[w.len()..])
+                    })
+                    .unwrap_or(sentence);
+                if super::width_note::read(note).is_some() {
+                    notes.push(note.to_string());
+                } else if let Some((header, _)) = sentence.split_once(':') {
+                    skipped.push(header.trim().to_string());
+                }
             }
-            continue;
+            match row {
+                Some(at) => rest = &rest[at..],
+                None => continue,
+            }
         }
         let lower = rest.to_lowercase();
         if ["note:", "notes:", "note ", "nb:"]
@@ -184,6 +199,26 @@ pub(super) fn statements(text: &str) -> Statements {
         notes,
         skipped,
     }
+}
+
+/// Where the first row statement of `line` starts ([`opens_row_statement`]): at its start, or
+/// right after a full stop (`Seed stitch. Row 1: ...`).
+pub(super) fn first_row_statement(line: &str) -> Option<usize> {
+    if opens_row_statement(line) {
+        return Some(0);
+    }
+    // ASCII lower case keeps byte offsets, so they index `line` too.
+    let lower = line.to_ascii_lowercase();
+    let mut from = 0;
+    while let Some(dot) = lower[from..].find('.') {
+        let at = from + dot + 1;
+        let next = lower[at..].trim_start();
+        if opens_row_statement(next) {
+            return Some(lower.len() - next.len());
+        }
+        from = at;
+    }
+    None
 }
 
 /// Where the next statement starts in `s`: a row word right after a full stop.

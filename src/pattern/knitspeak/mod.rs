@@ -308,5 +308,5 @@ fn setup_plans<'a>(
 pub fn looks_like_knitspeak(text: &str) -> bool {
     lexer::walker_dashes(text)
         .lines()
-        .any(lexer::opens_row_statement)
+        .any(|line| lexer::first_row_statement(line).is_some())
 }

@@ -35,6 +35,12 @@ def test_pasted_cable_knitspeak_knits_like_the_cable_preset(api: ModuleType) -> 
         source, **SMALL, pattern="CUSTOM", pattern_chart=CABLE.replace("\n", " ")
     )
     np.testing.assert_array_equal(pasted.vertices, preset.vertices)
+    # Pasted with the text around it, as a pattern page prints it.
+    around = f"Cable rib. Cast on a multiple of 6 sts + 2. {CABLE} Bind off all sts."
+    pasted = api.knit_result(
+        source, **SMALL, pattern="CUSTOM", pattern_chart=around.replace("\n", " ")
+    )
+    np.testing.assert_array_equal(pasted.vertices, preset.vertices)
     # And the operator takes it as the sidebar passes it, storing it on the knit.
     assert bpy.ops.object.knitwear_knit(**SMALL, pattern="CUSTOM", pattern_chart=CABLE) == {
         "FINISHED"
