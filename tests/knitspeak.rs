@@ -1464,12 +1464,14 @@ fn headers_that_name_a_row_and_its_kind_read_as_knitters_write_them() {
          Row 3: *P2, k2; rep from *.",
         "Row 1 (RS): *K2, p2; rep from *.\nEvery WS row: Purl.\nRow 3: *P2, k2; rep from *.",
         "Row 1 (RS): *K2, p2; rep from *.\nEven rows: Purl.\nRow 3: *P2, k2; rep from *.",
+        "Row 1 (RS): *K2, p2; rep from *.\nWS rows: Purl.\nRow 3: *P2, k2; rep from *.",
     ];
     all_read_as(&headers, &moss, same_cells);
     let stripes = ks("Row 1 (RS): Knit.\nRow 2: Purl.");
     let parities = [
         "All odd-numbered rows: Knit.\nAll even-numbered rows: Purl.",
         "Odd rows (RS): Knit.\nEven rows: Purl.",
+        "RS rows: Knit.\nWS rows: Purl.",
     ];
     all_read_as(&parities, &stripes, same_cells);
     let four = ks("Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Knit.\nRow 4: Purl.");

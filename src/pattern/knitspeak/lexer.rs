@@ -4,7 +4,7 @@
 
 /// Words a statement's header starts with (lower case). Also how a Knitspeak text is told from
 /// a chart ([`super::looks_like_knitspeak`]), so both read headers alike.
-const HEADER_WORDS: [&str; 11] = [
+const HEADER_WORDS: [&str; 15] = [
     "row",
     "rnd",
     "round",
@@ -12,6 +12,10 @@ const HEADER_WORDS: [&str; 11] = [
     "every ",
     "odd ",
     "even ",
+    "rs ",
+    "ws ",
+    "right side ",
+    "wrong side ",
     "set-up ",
     "set up ",
     "setup ",
