@@ -1323,7 +1323,13 @@ fn stitch_markers_part_the_row_and_runs_fill_to_them() {
         (
             "Row 1 (RS): K3, pm, p4, pm, k3.\nRow 2: P to m, sm, k2, k2tog, yo, sm, p to end.\n\
              Row 3: K to m, sm, k2tog, p2, sm, yo, k to end.\nRow 4: Purl.",
-            "change its stitch count, so the markers would move",
+            "Row 3: the stitches between markers 1 and 2 (from the right edge) change its \
+             stitch count, so the markers would move",
+        ),
+        (
+            // A WS row meets the parts from the left: its first is the last from the right.
+            "Row 1 (RS): K3, pm, p4, pm, k3.\nRow 2: P2tog, p to m, sm, k4, sm, yo, p to end.",
+            "Row 2: the stitches after the last marker (from the right edge) change",
         ),
         (
             "Row 1 (RS): K3, pm, p4, pm, k3.\nRow 2: P to m, sm, k4, p to end.\n\

@@ -14,6 +14,7 @@
 use super::body::{loops_in, Body};
 use super::layout::RowPlan;
 use crate::error::{KnitError, Result};
+use crate::pattern::Instruction;
 
 /// Where `rows` work to a marker, their bodies as rows of fixed width (the others as they
 /// were), in the order of `rows`; `None` where no row works to a marker. `setup`: set-up rows
@@ -42,26 +43,22 @@ pub(super) fn resolve(rows: &[RowPlan], setup: &[RowPlan]) -> Result<Option<Vec<
             )));
         }
         for (j, part) in row.body.segments.iter().enumerate() {
-            let stitches = |f: fn(crate::pattern::Instruction) -> usize| {
+            let sum = |f: fn(Instruction) -> usize| -> usize {
                 [&part.before, &part.after]
                     .into_iter()
                     .chain(part.repeat.as_ref().map(|(u, _)| u))
                     .flatten()
                     .map(|s| f(s.ins))
-                    .collect::<Vec<_>>()
+                    .sum()
             };
-            let (ins, outs) = (
-                stitches(crate::pattern::Instruction::stitches_in),
-                stitches(crate::pattern::Instruction::stitches_out),
-            );
             // A set-up row may increase (a cable's extra stitches): it counts what it leaves.
-            if row.number > 0 && ins.iter().sum::<usize>() != outs.iter().sum::<usize>() {
+            if row.number > 0 && sum(Instruction::stitches_in) != sum(Instruction::stitches_out) {
                 return Err(KnitError::Pattern(format!(
                     "{}: the stitches {} change its stitch count, so the markers would move: \
                      knitwear keeps each part's count (balance its increases and decreases \
                      between the same markers)",
                     row.what,
-                    place(j, parts)
+                    place(right_edge_order(j, parts, row.right_side), parts)
                 )));
             }
         }
