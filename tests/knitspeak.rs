@@ -1608,3 +1608,120 @@ fn the_text_around_a_pattern_is_passed_over() {
     // A chart is still a chart.
     assert_eq!(StitchPattern::from_text("kkpp\nkkpp").unwrap().width(), 4);
 }
+
+/// Publishers' own abbreviations for twists and crosses read as the Knitspeak crosses they
+/// are: `Tw2` (Rowan, Sirdar) the right twist, `Tw2L` the left; `Cr2R` / `Cr2L` the purled
+/// twists; `Cr3R` / `Cr3L` a knit pair crossing a purl stitch. An odd-sized `C3B`, which
+/// books split two ways, is refused with both readings offered.
+#[test]
+fn publishers_twists_and_crosses_read_as_their_crosses() {
+    let cases = [
+        ("Tw2, Tw2L", "1/1 RT, 1/1 LT"),
+        ("Tw2R, Tw2F", "1/1 RT, 1/1 LT"),
+        ("Cr2R, Cr2L", "1/1 RPT, 1/1 LPT"),
+        ("Cr3R, Cr3L", "2/1 RPC, 2/1 LPC"),
+        ("K2tog-b, yo, p2tog-b, yo", "k2tog tbl, yo, p2tog tbl, yo"),
+        ("Yo, s2kpo, yo", "yo, s2kp, yo"),
+        ("Sl1k, k1, sl1p, k1", "sl1 wyib, k1, sl1 wyib, k1"),
+    ];
+    for (spelled, knitspeak) in cases {
+        let row = |body: &str| format!("Row 1 (RS): *P2, {body}, p2; rep from *.\nRow 2: Purl.");
+        let expected = ks(&row(knitspeak));
+        all_read_as(&[&row(spelled)], &expected, same_cells);
+    }
+    refused(&[
+        (
+            "Row 1: *P2, C3B; rep from *.\nRow 2: Purl.",
+            "\"C3B\" crosses 3 stitches, which publishers split two ways: write it as \
+             \"2/1 RC\" (2 stitches travel in front) or \"1/2 RC\"",
+        ),
+        (
+            "Row 1: *P2, C5F; rep from *.\nRow 2: Purl.",
+            "write it as \"3/2 LC\" (3 stitches travel in front) or \"2/3 LC\"",
+        ),
+    ]);
+}
+
+/// A repeat inside a repeat, marked `**` (as printed patterns mark the second level), is
+/// worked its set number of times in place; a row whose only repeat is marked `**` reads as
+/// one marked `*`; and a set-count repeat beside an open one is written out.
+#[test]
+fn repeats_marked_with_two_stars_nest() {
+    all_read_as(
+        &["Row 1 (RS): *K1, **p1, k1; rep from ** 2 more times, p1; rep from *.\nRow 2: Purl."],
+        &ks("Row 1 (RS): *K1, p1, k1, p1, k1, p1, k1, p1; rep from *.\nRow 2: Purl."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): K1, **p1, k1; rep from ** to end.\nRow 2: Purl."],
+        &ks("Row 1 (RS): K1, *p1, k1; rep from * to end.\nRow 2: Purl."),
+        same_cells,
+    );
+    all_read_as(
+        &[
+            "Row 1 (RS): *K2, p1; rep from * once more, **k1, p2, k1; rep from ** to end.\n\
+           Row 2: Purl.",
+        ],
+        &ks("Row 1 (RS): K2, p1, k2, p1, *k1, p2, k1; rep from * to end.\nRow 2: Purl."),
+        same_cells,
+    );
+    all_read_as(
+        &["Rnd 1: *K2, **p1, k1; rep from ** twice more; rep from * around.\nRnd 2: Knit."],
+        &ks("Rnd 1: *K2, p1, k1, p1, k1, p1, k1; rep from * around.\nRnd 2: Knit."),
+        same_cells,
+    );
+    // `rep from ** 2 times` says neither "in all" nor "more": refused as `*` is.
+    refused(&[(
+        "Row 1: *K1, **p1, k1; rep from ** 2 times, p1; rep from *.\nRow 2: Purl.",
+        "expected \"to end\", \"to last N sts\" or \"N more times\"",
+    )]);
+}
+
+/// `K2, p2 to end`: a run whose count is written repeats the row up to it, as printed
+/// patterns write rib; `K1, p to end` stays one knit stitch and a run of purls. `Knit 1 row`
+/// is `Knit`. Rows that only say "as before" and stitches worked into a yarn-over's loop
+/// are refused with what they say.
+#[test]
+fn counted_runs_repeat_the_row_and_as_set_rows_are_refused() {
+    all_read_as(
+        &["Row 1 (RS): K2, p2 to end.\nRow 2: K2, p2 to end."],
+        &ks("Row 1 (RS): *K2, p2; rep from * to end.\nRow 2: *K2, p2; rep from * to end."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): K1, p1 to last st, k1.\nRow 2: P1, k1 to last st, p1."],
+        &ks("Row 1 (RS): *K1, p1; rep from * to last st, k1.\n\
+             Row 2: *P1, k1; rep from * to last st, p1."),
+        same_up_to_shift,
+    );
+    all_read_as(
+        &["Row 1 (RS): P1, k1 tbl to end.\nRow 2: K1, p1 tbl to end."],
+        &ks("Row 1 (RS): *P1, k1 tbl; rep from *.\nRow 2: *K1, p1 tbl; rep from *."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): K1, p to end.\nRow 2: P1, k to end."],
+        &ks("Row 1 (RS): K1, *p1; rep from * to end.\nRow 2: P1, *k1; rep from * to end."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): Knit 1 row.\nRow 2: Purl one row."],
+        &ks("Row 1 (RS): Knit.\nRow 2: Purl."),
+        same_cells,
+    );
+    refused(&[
+        (
+            "Row 1 (RS): *K2, p2; rep from *.\nRow 2: Work even.",
+            "\"Work even\" works the row as earlier rows set it",
+        ),
+        (
+            "Row 1 (RS): *K2, p2; rep from *.\nRow 2: Work in patt.",
+            "\"Work in patt\" works the row as earlier rows set it",
+        ),
+        (
+            "Row 1 (RS): *K2tog, yo twice, ssk; rep from *.\n\
+             Row 2: *P1, (k1, p1) into double yo, p1; rep from *.",
+            "works 2 stitches into one loop (a 1-to-2 increase)",
+        ),
+    ]);
+}

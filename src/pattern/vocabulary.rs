@@ -199,7 +199,10 @@ pub(crate) const VOCABULARY: &[Entry] = {
                     ("with yarn in back", "wyib"),
                     ("with yarn in front", "wyif"),
                 ],
-                ignored: &["pwise", "purlwise", "kwise", "knitwise", "st", "sts"],
+                // `sl1k` / `sl1p`: stitch-maps' knitwise and purlwise slips.
+                ignored: &[
+                    "pwise", "purlwise", "kwise", "knitwise", "st", "sts", "k", "p",
+                ],
             },
             offered: &["sl1", "sl1 wyib", "sl1 wyif"],
             offered_with_count: &["sl"],
@@ -268,6 +271,8 @@ pub(crate) const VOCABULARY: &[Entry] = {
                 "k2tog through back loop",
                 "k2tog through the back loops",
                 "k2tog through the back loop",
+                // Barbara Walker's `-b`: through the back loops.
+                "k2tog b",
             ],
             I::K2togTbl,
             &["k2tog tbl"],
@@ -281,6 +286,7 @@ pub(crate) const VOCABULARY: &[Entry] = {
                 "p2tog through back loop",
                 "p2tog through the back loops",
                 "p2tog through the back loop",
+                "p2tog b",
             ],
             I::P2togTbl,
             &["p2tog tbl"],
@@ -332,6 +338,7 @@ pub(crate) const VOCABULARY: &[Entry] = {
                 "cdd",
                 "s2kp",
                 "s2kp2",
+                "s2kpo",
                 "sl2 k1 p2sso",
                 "sl 2 k1 p2sso",
                 "s2 k1 p2sso",
@@ -366,6 +373,24 @@ pub(crate) const VOCABULARY: &[Entry] = {
         },
         // A twist's kind alone means the 1/1 twist.
         phrase(&["rt"], cross(1, 1, false, false), &[]),
+        // Publishers' twists and crosses (Rowan, Debbie Bliss, Sirdar): `Tw2` knits the
+        // second stitch then the first, a right twist; `Tw2L` / `Tw2F` the left one. `Cr2R` /
+        // `Cr3R` cross a knit stitch (two) to the right over a purl one, the stitch behind
+        // purled: `1/1 RPT` / `2/1 RPC`, and `Cr2L` / `Cr3L` the same to the left.
+        phrase(
+            &["tw2", "tw2r", "tw2b", "tw 2", "tw2 r", "tw2 b"],
+            cross(1, 1, false, false),
+            &["Tw2"],
+        ),
+        phrase(
+            &["tw2l", "tw2f", "tw2 l", "tw2 f"],
+            cross(1, 1, true, false),
+            &["Tw2L"],
+        ),
+        phrase(&["cr2r", "cr2 r"], cross(1, 1, false, true), &["Cr2R"]),
+        phrase(&["cr2l", "cr2 l"], cross(1, 1, true, true), &["Cr2L"]),
+        phrase(&["cr3r", "cr3 r"], cross(2, 1, false, true), &["Cr3R"]),
+        phrase(&["cr3l", "cr3 l"], cross(2, 1, true, true), &["Cr3L"]),
         phrase(&["lt"], cross(1, 1, true, false), &[]),
         phrase(&["rpt"], cross(1, 1, false, true), &[]),
         phrase(&["lpt"], cross(1, 1, true, true), &[]),
@@ -582,6 +607,25 @@ fn alias(squeezed: &str, letter: char) -> Option<(u8, bool)> {
         _ => return None,
     };
     Some((digits.parse().ok()?, left))
+}
+
+/// Why `token` is refused if it is a `C3B`-style cable of an odd stitch count: publishers
+/// split those two ways (`C3B` is `2/1 RC` in some books and `1/2 RC` in others), so the
+/// reader asks which rather than guess. `None` for any other token.
+pub(crate) fn odd_cable_alias(token: &str) -> Option<String> {
+    let squeezed: String = normal_form(token).chars().filter(|c| *c != ' ').collect();
+    let (n, left) = alias(&squeezed, 'c')?;
+    if n % 2 == 0 || !(3..=2 * MAX_CROSS_SIDE - 1).contains(&n) {
+        return None;
+    }
+    let (big, small) = (n / 2 + 1, n / 2);
+    let kind = if left { "LC" } else { "RC" };
+    Some(format!(
+        "\"{}\" crosses {n} stitches, which publishers split two ways: write it as \
+         \"{big}/{small} {kind}\" ({big} stitches travel in front) or \"{small}/{big} {kind}\" \
+         ({small} in front), as the pattern's abbreviations explain it",
+        token.trim()
+    ))
 }
 
 /// Whether `lower` (lower case) is a bare knit or purl name (`knit`, `p`): a row body of that

@@ -10,7 +10,8 @@ use crate::error::{KnitError, Result};
 use crate::pattern::instruction::MAX_CROSS_SIDE;
 use crate::pattern::unknitted::unknitted;
 use crate::pattern::vocabulary::{
-    after_repeat_from, is_knit_or_purl_name, is_marker, parse_stitch, suggest, Stitched,
+    after_repeat_from, is_knit_or_purl_name, is_marker, odd_cable_alias, parse_stitch, suggest,
+    Stitched,
 };
 
 /// How an open repeat ends.
@@ -94,7 +95,8 @@ enum El {
     Stitch(Stitched),
     /// `k to end`, `k to last 3 sts`, `Knit.`: a one-stitch open repeat.
     Fill(Stitched, Until, usize),
-    RepStart(usize),
+    /// A repeat opens at this instruction, marked with this many stars.
+    RepStart(usize, u8),
     RepEnd(Until, usize),
     Count(usize),
     /// `pm`, `sm`: a stitch marker between two stitches.
@@ -213,6 +215,13 @@ fn split_times(s: &str) -> (String, usize) {
     (s.to_string(), 1)
 }
 
+/// Whether a stitch phrase (`p2`, `k1 tbl`, `knit two`; not `p`, `k tbl`) has its count
+/// written.
+fn written_count(phrase: &str) -> bool {
+    phrase.contains(|c: char| c.is_ascii_digit())
+        || phrase.split(' ').any(|w| numbers::count(w).is_some())
+}
+
 /// `to end`, `across`, `to last 3 sts`, `to last st` -> how a repeat ends.
 fn until(s: &str) -> Option<Until> {
     let s = s.trim().to_lowercase();
@@ -305,6 +314,11 @@ fn worked_into_one(text: &str) -> bool {
                 "same stitch",
                 "1 st",
                 "one st",
+                // `(k1, p1) into double yo`: the loop a double yarn-over made.
+                "double yo",
+                "double yarn over",
+                "yo",
+                "yarn over",
             ]
             .iter()
             .any(|s| r.starts_with(s))
@@ -402,11 +416,11 @@ impl BodyParser<'_> {
             self.at += 1;
             match tok {
                 Tok::Sep => {}
-                Tok::Star => {
+                Tok::Star(stars) => {
                     if depth > 0 {
                         return Err(self.err("*", "a repeat cannot start inside brackets"));
                     }
-                    els.push(El::RepStart(self.instruction + 1));
+                    els.push(El::RepStart(self.instruction + 1, stars));
                 }
                 Tok::Close(c) => {
                     if close.is_some() {
@@ -448,7 +462,7 @@ impl BodyParser<'_> {
                         if let (Some(u), 0) = (open_ended, depth) {
                             self.at += 1;
                             self.instruction += 1;
-                            els.push(El::RepStart(self.instruction));
+                            els.push(El::RepStart(self.instruction, 0));
                             els.extend(inner);
                             els.push(El::RepEnd(u, self.instruction));
                             continue;
@@ -533,6 +547,75 @@ impl BodyParser<'_> {
         Ok(())
     }
 
+    /// Closes the repeat opened by `stars` stars (0: by the last one opened, for `rep` and
+    /// `rep *` spellings that do not say) with `u`. A row holds one repeat that the body
+    /// keeps as such ([`Body::repeat`]); a repeat worked a set number of times inside or
+    /// beside another (`*k1, **p1, k1; rep from ** twice more, p1; rep from *`) is written
+    /// out in place, as a knitter works it.
+    fn close_repeat(&self, t: &str, u: Until, stars: u8, els: &mut Vec<El>) -> Result<()> {
+        let starts = |els: &[El]| {
+            els.iter()
+                .enumerate()
+                .filter_map(|(i, el)| match el {
+                    El::RepStart(_, s) => Some((i, *s)),
+                    _ => None,
+                })
+                .collect::<Vec<_>>()
+        };
+        let open = starts(els);
+        let matching = open
+            .iter()
+            .rev()
+            .find(|&&(_, s)| stars == 0 || s == stars || (stars == 1 && s == 0))
+            .or(open.last());
+        let Some(&(at, _)) = matching else {
+            // Left for the body to report (a repeat with no '*' before it).
+            els.push(El::RepEnd(u, self.instruction));
+            return Ok(());
+        };
+        let others = open.len() > 1;
+        match u {
+            Until::Times(n) if others || stars > 1 => {
+                if els[at + 1..].iter().any(|el| matches!(el, El::RepEnd(..))) {
+                    return Err(self.err(t, "a repeat that holds another open-ended repeat"));
+                }
+                let unit: Vec<El> = els.drain(at..).skip(1).collect();
+                if unit.len().saturating_mul(n) + els.len() > 16 * MAX_KNITSPEAK_WIDTH {
+                    return Err(self.err(t, "far too many stitches"));
+                }
+                for _ in 0..n {
+                    els.extend(unit.iter().cloned());
+                }
+            }
+            _ => {
+                // A repeat worked a set number of times before this one is written out, so
+                // that the row keeps one repeat.
+                let closed = open
+                    .iter()
+                    .filter(|&&(i, _)| i < at)
+                    .find_map(|&(first, _)| {
+                        els[first..at]
+                            .iter()
+                            .enumerate()
+                            .find_map(|(e, el)| match el {
+                                El::RepEnd(Until::Times(n), _) => Some((first, first + e, *n)),
+                                _ => None,
+                            })
+                    });
+                if let Some((first, end, n)) = closed {
+                    let unit: Vec<El> = els[first + 1..end].to_vec();
+                    let tail: Vec<El> = els.drain(first..).skip(end - first + 1).collect();
+                    for _ in 0..n {
+                        els.extend(unit.iter().cloned());
+                    }
+                    els.extend(tail);
+                }
+                els.push(El::RepEnd(u, self.instruction));
+            }
+        }
+        Ok(())
+    }
+
     fn text(&mut self, t: &str, els: &mut Vec<El>, in_brackets: bool) -> Result<()> {
         let lower = t.to_lowercase();
         let lower = lower.trim();
@@ -581,24 +664,58 @@ impl BodyParser<'_> {
             }
         }
         if let Some(rest) = after_repeat_from(lower) {
-            let u = until(rest).ok_or_else(|| {
+            // `rep from **`: the phrase read its first star.
+            let more = rest.trim_start().len() - rest.trim_start().trim_start_matches('*').len();
+            let stars = if rest.trim_start().starts_with('*') || lower.contains("from *") {
+                1 + more as u8
+            } else {
+                0
+            };
+            let u = until(rest.trim_start().trim_start_matches('*')).ok_or_else(|| {
                 self.err(
                     t,
                     "expected \"to end\", \"to last N sts\" or \"N more times\"",
                 )
             })?;
-            els.push(El::RepEnd(u, self.instruction));
-            return Ok(());
+            return self.close_repeat(t, u, stars, els);
         }
+        // `Knit 1 row.` says what `Knit.` says.
+        let lower = [
+            "1 row",
+            "one row",
+            "1 rnd",
+            "one rnd",
+            "1 round",
+            "one round",
+        ]
+        .iter()
+        .find_map(|w| lower.strip_suffix(w))
+        .map(str::trim)
+        .filter(|name| self.single && is_knit_or_purl_name(name))
+        .unwrap_or(lower);
         // A one-stitch open repeat: `Knit`, `k to end`, `p to last 3 sts`, `knit across`.
         let bare = self.single && is_knit_or_purl_name(lower);
         for (i, _) in lower.match_indices(' ') {
             let (head, tail) = lower.split_at(i);
-            if let (Some(u), Some((s, 1))) = (until(tail), parse_stitch(head)) {
-                if !tail.trim().is_empty() && s.ins.stitches_in() == 1 {
-                    els.push(El::Fill(s, u, self.instruction));
-                    return Ok(());
-                }
+            let (Some(u), Some((s, count))) = (until(tail), parse_stitch(head)) else {
+                continue;
+            };
+            if tail.trim().is_empty() || s.ins.stitches_in() != 1 {
+                continue;
+            }
+            // `K2, p2 to end`, `K1, p1 to last st, k1`: a run with its count written repeats
+            // the row so far (a count means nothing on a run of one stitch): as printed
+            // patterns write rib, `[k2, p2] to end`. `K1, p to end` is one knit stitch and a
+            // run of purls.
+            if written_count(head) && els.iter().all(|el| matches!(el, El::Stitch(_))) {
+                els.insert(0, El::RepStart(1, 0));
+                els.extend(std::iter::repeat_n(El::Stitch(s), count));
+                els.push(El::RepEnd(u, self.instruction));
+                return Ok(());
+            }
+            if count == 1 {
+                els.push(El::Fill(s, u, self.instruction));
+                return Ok(());
             }
         }
         // `k2tog 3 times`
@@ -702,7 +819,7 @@ fn parted(els: Vec<El>) -> Vec<Vec<El>> {
             (El::Count(_), _) => false,
             // A yarn-over right after the stitches before the marker stays with them.
             (El::Stitch(s), Some(0)) if s.ins.stitches_in() == 0 => false,
-            (El::Stitch(_), Some(0)) | (El::Fill(..) | El::RepStart(_), Some(_)) => {
+            (El::Stitch(_), Some(0)) | (El::Fill(..) | El::RepStart(..), Some(_)) => {
                 pending = None;
                 true
             }
@@ -712,7 +829,7 @@ fn parted(els: Vec<El>) -> Vec<Vec<El>> {
             parts.push(Vec::new());
         }
         match &el {
-            El::RepStart(_) => in_repeat = true,
+            El::RepStart(..) => in_repeat = true,
             El::RepEnd(u, _) => {
                 in_repeat = false;
                 if let Until::Marker(n) = u {
@@ -767,7 +884,7 @@ fn body_of(els: Vec<El>, what: &str, body: &str, last: bool) -> Result<Body> {
                 1 => unit.push(s),
                 _ => out.after.push(s),
             },
-            El::RepStart(at) => {
+            El::RepStart(at, _) => {
                 if stage != 0 {
                     return Err(KnitError::Pattern(format!(
                         "{what}, instruction {at}: a second '*' repeat in one row; knitwear \
@@ -859,6 +976,30 @@ fn unknown(what: &str, instruction: usize, token: &str) -> KnitError {
     // A stitch knitwear knows but does not knit (`kfb`, `bo 2`, `w&t`): say what it is, not
     // which known stitch it is spelled like.
     if let Some(why) = unknitted(token) {
+        return KnitError::Pattern(format!("{what}, instruction {instruction}: {why}"));
+    }
+    // `Work even`, `Work in patt`: a row that says only "as before", which a stitch pattern's
+    // rows do not set.
+    let as_set = [
+        "work even",
+        "work in patt",
+        "work in pattern",
+        "cont in patt",
+        "continue in patt",
+        "continue in pattern",
+        "work as set",
+        "work in patt as set",
+    ];
+    if as_set.iter().any(|w| lower.starts_with(w)) {
+        return KnitError::Pattern(format!(
+            "{what}, instruction {instruction}: \"{}\" works the row as earlier rows set it, \
+             which a stitch pattern's own rows do not say: write the row's stitches (\"k the \
+             knit sts and p the purl sts\" where each stitch is worked as it faces you), or \
+             leave the row out",
+            token.trim()
+        ));
+    }
+    if let Some(why) = odd_cable_alias(token) {
         return KnitError::Pattern(format!("{what}, instruction {instruction}: {why}"));
     }
     let closest = suggest(token);

@@ -247,8 +247,9 @@ fn next_header(s: &str) -> Option<usize> {
 pub(super) enum Tok {
     /// `,`, `;` or `.`: between instructions.
     Sep,
-    /// `*`: a repeat starts.
-    Star,
+    /// `*`, `**`: a repeat starts, marked with that many stars (a repeat nested in another
+    /// is marked with more: `*k1, **p1, k1; rep from ** twice more; rep from *`).
+    Star(u8),
     Open(char),
     Close(char),
     /// Everything else: an instruction, `3 times`, `rep from * to end`, `18 sts`.
@@ -274,15 +275,17 @@ pub(super) fn tokens(body: &str) -> Vec<Tok> {
             }
             // The `*` of `rep from *` belongs to its text: the body grammar reads that phrase
             // whole (see `vocabulary::after_repeat_from`).
-            '*' if ["from", "rep", "repeat"]
-                .iter()
-                .any(|w| text.trim_end().to_lowercase().ends_with(w)) =>
+            '*' if ["from", "rep", "repeat"].iter().any(|w| {
+                text.trim_end_matches([' ', '*'])
+                    .to_lowercase()
+                    .ends_with(w)
+            }) =>
             {
                 text.push(ch)
             }
             // `*k2, p2* rep to end`: a `*` that closes the repeat it opened, before the `rep`
             // that ends it, is no new repeat.
-            '*' if out.contains(&Tok::Star)
+            '*' if out.iter().any(|t| matches!(t, Tok::Star(_)))
                 && body[at + 1..]
                     .trim_start_matches([' ', ',', ';'])
                     .to_lowercase()
@@ -292,9 +295,12 @@ pub(super) fn tokens(body: &str) -> Vec<Tok> {
                 out.push(Tok::Sep);
             }
             '*' => {
+                let doubled = text.is_empty() && body[..at].ends_with('*');
                 flush(&mut text, &mut out);
-                if out.last() != Some(&Tok::Star) {
-                    out.push(Tok::Star);
+                match out.last_mut() {
+                    Some(Tok::Star(n)) if doubled => *n = n.saturating_add(1),
+                    Some(Tok::Star(_)) => {}
+                    _ => out.push(Tok::Star(1)),
                 }
             }
             '[' | '(' => {
