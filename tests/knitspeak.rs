@@ -1725,3 +1725,137 @@ fn counted_runs_repeat_the_row_and_as_set_rows_are_refused() {
         ),
     ]);
 }
+
+/// Rows numbered as British patterns number them (`1st row (RS):`, `2nd and every alt row:`,
+/// `5th to 8th rows:`, `1st rnd:`, `As 3rd row.`) read as Knitspeak's `Row 1 (RS):`; so do
+/// `Row 2 and every alt row:`, `Every other row:` and `Rows 1 to 4:` / `Rows 1 through 4:`.
+#[test]
+fn british_row_numbers_and_alternate_rows_read() {
+    all_read_as(
+        &[
+            "1st row (RS): K2, *p2, k2; rep from * to end.\n\
+             2nd row: P2, *k2, p2; rep from * to end.\n\
+             3rd row: As 1st row.\n4th row: As 2nd row.\n5th to 8th rows: Knit.",
+            "Rows 1 and 3 (RS): K2, *p2, k2; rep from * to end.\n\
+             Rows 2 and 4: P2, *k2, p2; rep from * to end.\nRows 5 through 8: Knit.",
+            "1st and 3rd rows (RS): K2, *p2, k2; rep from * to end.\n\
+             2nd and 4th rows: P2, *k2, p2; rep from * to end.\n5th-8th rows: Knit.",
+        ],
+        &ks("Rows 1 and 3 (RS): K2, *p2, k2; rep from * to end.\n\
+             Rows 2 and 4: P2, *k2, p2; rep from * to end.\nRows 5-8: Knit."),
+        same_cells,
+    );
+    let lace = ks("Row 1 (RS): *K1, yo, k2tog; rep from *.\nRow 2: Purl.\n\
+                   Row 3: *K2tog, yo, k1; rep from *.\nRow 4: Purl.");
+    all_read_as(
+        &[
+            "1st row (RS): *K1, yo, k2tog; rep from *.\n2nd and every alt row: Purl.\n\
+             3rd row: *K2tog, yo, k1; rep from *.",
+            "Row 1 (RS): *K1, yo, k2tog; rep from *.\nRow 2 and every alternate row: Purl.\n\
+             Row 3: *K2tog, yo, k1; rep from *.",
+            "Row 1 (RS): *K1, yo, k2tog; rep from *.\nEvery other row: Purl.\n\
+             Row 3: *K2tog, yo, k1; rep from *.",
+            "1st row (RS): *K1, yo, k2tog; rep from *.\n2nd and every foll alt row: Purl.\n\
+             3rd row: *K2tog, yo, k1; rep from *.",
+        ],
+        &lace,
+        same_cells,
+    );
+    // The row named before `every alt row` is one of them, and the repeat starts at it.
+    all_read_as(
+        &["Row 1 and every alt row: Knit.\nRow 2: Purl.\nRow 4: *K1, p1; rep from *."],
+        &ks("Rows 1 and 3: Knit.\nRow 2: Purl.\nRow 4: *K1, p1; rep from *."),
+        same_cells,
+    );
+    all_read_as(
+        &["1st rnd: Knit.\n2nd and every alt rnd: Purl.\n3rd rnd: *K1, p1; rep from *."],
+        &ks("Rnd 1: Knit.\nRnd 2: Purl.\nRnd 3: *K1, p1; rep from *.\nRnd 4: Purl."),
+        same_cells,
+    );
+    // `R1:` as pattern pages shorten it.
+    all_read_as(
+        &["R1 (RS): Knit.\nR2: Purl.\nR3: Purl.\nR4: Knit."],
+        &ks("Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Purl.\nRow 4: Knit."),
+        same_cells,
+    );
+    // Ordinals that name no row are left alone.
+    refused(&[(
+        "1st row: K2, *p2, k2; rep from *.\n2nd row: 3rd st.",
+        "unknown stitch \"3rd st\"",
+    )]);
+}
+
+/// British patterns slip with the yarn in front by moving it (`yf, sl1, yb`) and use `yf` /
+/// `yfwd` for a yarn-over elsewhere (`yf, k2tog`, `yf, sl1, k1, psso`); a move the reader
+/// cannot place is refused.
+#[test]
+fn yarn_moved_round_a_slip_slips_it_on_that_side() {
+    all_read_as(
+        &[
+            "Row 1 (RS): *K1, yf, sl1, yb; rep from *.\nRow 2: *P1, yb, sl1 purlwise, yf; rep from *.",
+            "Row 1 (RS): *K1, yarn to front, sl1, yarn to back; rep from *.\n\
+             Row 2: *P1, ytb, sl1, ytf; rep from *.",
+        ],
+        &ks("Row 1 (RS): *K1, sl1 wyif; rep from *.\nRow 2: *P1, sl1 wyib; rep from *."),
+        same_cells,
+    );
+    all_read_as(
+        &[
+            "Row 1 (RS): *K1, yf, k2tog, yfwd, sl1, k1, psso; rep from *.\nRow 2: Purl.",
+            "Row 1 (RS): *K1, yo, k2tog, yo, skp; rep from *.\nRow 2: Purl.",
+        ],
+        &ks("Row 1 (RS): *K1, yo, k2tog, yo, ssk; rep from *.\nRow 2: Purl."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): *K2, ytf, sl2, ytb; rep from *.\nRow 2: Purl."],
+        &ks("Row 1 (RS): *K2, sl2 wyif; rep from *.\nRow 2: Purl."),
+        same_cells,
+    );
+    refused(&[
+        (
+            "Row 1 (RS): *K1, yb, k1; rep from *.\nRow 2: Purl.",
+            "a move of the yarn to the back is read only around slipped stitches",
+        ),
+        (
+            "Row 1 (RS): *K1, ytf, k1; rep from *.\nRow 2: Purl.",
+            "a move of the yarn to the front is read only around slipped stitches",
+        ),
+    ]);
+}
+
+/// A pattern's key of abbreviations, before or after its rows, defines its cables: each
+/// definition that spells out a cable needle's working reads as the cross it works, and the
+/// rows read the name as that cross, a name the reader already knows included (a publisher's
+/// `T3B` may cross knit over knit).
+#[test]
+fn a_patterns_own_cable_abbreviations_read_as_they_are_defined() {
+    let rows = "Row 1 (RS): *P2, C3B, p2, T3B; rep from *.\nRow 2: *P3, k2, p3, k2; rep from *.";
+    let expected =
+        ks("Row 1 (RS): *P2, 2/1 RC, p2, 2/1 RC; rep from *.\nRow 2: *P3, k2, p3, k2; rep from *.");
+    let key = "Special abbreviations\n\
+               C3B = slip next st onto cable needle and hold at back of work, K2, then K1 from \
+               cable needle.\n\
+               T3B: sl 1 to cn, hold in back, k2, k1 from cn.\n\
+               MB = make bobble: (k1, p1, k1) in next st, turn, p3, turn, sk2p.";
+    all_read_as(
+        &[
+            &format!("{key}\n{rows}"),
+            &format!("{rows}\n{key}"),
+            &format!("Cable rib\n{key}\nCast on a multiple of 10 sts.\n{rows}\nBind off."),
+        ],
+        &expected,
+        same_cells,
+    );
+    // Without the key, C3B is refused with both readings and T3B is the reader's 2/1 RPC.
+    refused(&[(
+        rows,
+        "\"C3B\" crosses 3 stitches, which publishers split two ways",
+    )]);
+    let left = ks("C3F = sl 2 to cn, hold in front, k1, k2 from cn.\n\
+                   Row 1 (RS): *P2, C3F; rep from *.\nRow 2: *P3, k2; rep from *.");
+    assert!(same_cells(
+        &left,
+        &ks("Row 1 (RS): *P2, 2/1 LC; rep from *.\nRow 2: *P3, k2; rep from *.")
+    ));
+}

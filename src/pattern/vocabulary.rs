@@ -38,7 +38,7 @@ impl Stitched {
         }
     }
 
-    fn plain(ins: Instruction) -> Self {
+    pub(crate) fn plain(ins: Instruction) -> Self {
         Self {
             ins,
             slip_default: false,
@@ -201,7 +201,7 @@ pub(crate) const VOCABULARY: &[Entry] = {
                 ],
                 // `sl1k` / `sl1p`: stitch-maps' knitwise and purlwise slips.
                 ignored: &[
-                    "pwise", "purlwise", "kwise", "knitwise", "st", "sts", "k", "p",
+                    "pwise", "purlwise", "pw", "kwise", "knitwise", "kw", "st", "sts", "k", "p",
                 ],
             },
             offered: &["sl1", "sl1 wyib", "sl1 wyif"],
@@ -273,6 +273,7 @@ pub(crate) const VOCABULARY: &[Entry] = {
                 "k2tog through the back loop",
                 // Barbara Walker's `-b`: through the back loops.
                 "k2tog b",
+                "k2togtbl",
             ],
             I::K2togTbl,
             &["k2tog tbl"],
@@ -287,6 +288,7 @@ pub(crate) const VOCABULARY: &[Entry] = {
                 "p2tog through the back loops",
                 "p2tog through the back loop",
                 "p2tog b",
+                "p2togtbl",
             ],
             I::P2togTbl,
             &["p2tog tbl"],
@@ -557,7 +559,15 @@ impl Reads {
                 }
             }
             Self::CableAlias => {
-                let (n, left) = alias(squeezed, 'c')?;
+                // `Cable 4 back` / `cable 6 front` spelled out.
+                let spelled = squeezed.strip_prefix("cable").and_then(|r| {
+                    let (n, dir) = r
+                        .strip_suffix("back")
+                        .map(|n| (n, 'b'))
+                        .or_else(|| r.strip_suffix("front").map(|n| (n, 'f')))?;
+                    Some(format!("c{n}{dir}"))
+                });
+                let (n, left) = alias(spelled.as_deref().unwrap_or(squeezed), 'c')?;
                 if n % 2 != 0 || !(2..=2 * MAX_CROSS_SIDE).contains(&n) {
                     return None;
                 }
@@ -623,8 +633,11 @@ pub(crate) fn odd_cable_alias(token: &str) -> Option<String> {
     Some(format!(
         "\"{}\" crosses {n} stitches, which publishers split two ways: write it as \
          \"{big}/{small} {kind}\" ({big} stitches travel in front) or \"{small}/{big} {kind}\" \
-         ({small} in front), as the pattern's abbreviations explain it",
-        token.trim()
+         ({small} in front), as the pattern's abbreviations explain it, or paste that \
+         explanation with the rows (\"{name} = sl {small} to cn, hold at back, k{big}, k{small} \
+         from cn\")",
+        token.trim(),
+        name = token.trim(),
     ))
 }
 

@@ -10,8 +10,8 @@ use crate::error::{KnitError, Result};
 use crate::pattern::instruction::MAX_CROSS_SIDE;
 use crate::pattern::unknitted::unknitted;
 use crate::pattern::vocabulary::{
-    after_repeat_from, is_knit_or_purl_name, is_marker, odd_cable_alias, parse_stitch, suggest,
-    Stitched,
+    after_repeat_from, is_knit_or_purl_name, is_marker, normal_form, odd_cable_alias, parse_stitch,
+    suggest, Stitched,
 };
 
 /// How an open repeat ends.
@@ -101,10 +101,21 @@ enum El {
     Count(usize),
     /// `pm`, `sm`: a stitch marker between two stitches.
     Marker,
+    /// `yf` / `yb`: the yarn brought to the front or taken to the back, as British patterns
+    /// write a slip with the yarn in front (`yf, sl1, yb`); `yarn_over`: the spelling is also
+    /// a yarn-over's (`yf`, `yfwd`), which it is where no slip follows. At its instruction.
+    YarnTo {
+        front: bool,
+        yarn_over: bool,
+        at: usize,
+    },
 }
 
 /// Reads a body's tokens into its elements, brackets expanded.
 struct BodyParser<'a> {
+    /// The pattern's own abbreviations ([`super::abbreviations`]), read before the
+    /// vocabulary.
+    defined: &'a [(String, crate::pattern::Instruction)],
     toks: Vec<Tok>,
     /// The next token.
     at: usize,
@@ -650,6 +661,14 @@ impl BodyParser<'_> {
             els.push(El::Marker);
             return Ok(());
         }
+        if let Some((front, yarn_over)) = yarn_to(lower) {
+            els.push(El::YarnTo {
+                front,
+                yarn_over,
+                at: self.instruction,
+            });
+            return Ok(());
+        }
         if let Some(slipped) = passes_over(lower) {
             return self.pass_over(t, slipped, els);
         }
@@ -720,7 +739,13 @@ impl BodyParser<'_> {
         }
         // `k2tog 3 times`
         let (phrase, n) = split_times(lower);
-        let Some((s, count)) = parse_stitch(&phrase) else {
+        let own = normal_form(&phrase);
+        let own = self
+            .defined
+            .iter()
+            .find(|(name, _)| *name == own)
+            .map(|&(_, ins)| (Stitched::plain(ins), 1));
+        let Some((s, count)) = own.or_else(|| parse_stitch(&phrase)) else {
             return Err(unknown(self.what, self.instruction, t));
         };
         if bare && !in_brackets {
@@ -736,11 +761,102 @@ impl BodyParser<'_> {
     }
 }
 
+/// `yf`, `yarn to front` -> (front, also a yarn-over's spelling); `yb`, `yarn to back` ->
+/// (back, no). `None` for any other phrase.
+fn yarn_to(lower: &str) -> Option<(bool, bool)> {
+    let norm = lower.trim().trim_end_matches('.');
+    if ["yf", "yfwd", "yarn forward", "yarn fwd"].contains(&norm) {
+        return Some((true, true));
+    }
+    if [
+        "ytf",
+        "yarn to front",
+        "bring yarn to front",
+        "bring yarn forward",
+    ]
+    .contains(&norm)
+    {
+        return Some((true, false));
+    }
+    if [
+        "yb",
+        "ybk",
+        "ytb",
+        "yarn back",
+        "yarn bk",
+        "yarn to back",
+        "take yarn to back",
+        "take yarn back",
+    ]
+    .contains(&norm)
+    {
+        return Some((false, false));
+    }
+    None
+}
+
+/// The yarn moves of `els` read: stitches slipped between a move of the yarn and its move
+/// back (`yf, sl1, yb`, `yb, sl2, yf`) are slipped with the yarn on the side it was moved
+/// to, as `sl1 wyif` says; a `yf` (or `yfwd`) that no slip and move back follow is the
+/// yarn-over British patterns mean by it (`k1, yf, k2tog`). Any other move is refused.
+fn slips_between_yarn_moves(els: Vec<El>, what: &str) -> Result<Vec<El>> {
+    use crate::pattern::Instruction as I;
+    let mut out = Vec::with_capacity(els.len());
+    let mut i = 0;
+    while i < els.len() {
+        let El::YarnTo {
+            front,
+            yarn_over,
+            at,
+        } = els[i]
+        else {
+            out.push(els[i].clone());
+            i += 1;
+            continue;
+        };
+        let slips = els[i + 1..]
+            .iter()
+            .take_while(|el| matches!(el, El::Stitch(s) if matches!(s.ins, I::Slip { .. })))
+            .count();
+        let back = els
+            .get(i + 1 + slips)
+            .is_some_and(|el| matches!(el, El::YarnTo { front: f, .. } if *f != front));
+        if slips > 0 && back {
+            let slip = Stitched {
+                ins: I::Slip { yarn_front: front },
+                slip_default: false,
+            };
+            out.extend(std::iter::repeat_n(El::Stitch(slip), slips));
+            i += slips + 2;
+            continue;
+        }
+        if front && yarn_over {
+            out.push(El::Stitch(Stitched {
+                ins: I::YarnOver,
+                slip_default: false,
+            }));
+            i += 1;
+            continue;
+        }
+        return Err(KnitError::Pattern(format!(
+            "{what}, instruction {at}: a move of the yarn to the {} is read only around \
+             slipped stitches, moved back after them (\"yf, sl1, yb\": sl1 wyif)",
+            if front { "front" } else { "back" }
+        )));
+    }
+    Ok(out)
+}
+
 /// A row's body (after its header's `:`), in working order.
-pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
+pub(super) fn parse_body(
+    body: &str,
+    what: &str,
+    defined: &[(String, crate::pattern::Instruction)],
+) -> Result<Body> {
     let toks = tokens(body);
     let single = instructions_outside_counts(&toks) == 1;
     let mut p = BodyParser {
+        defined,
         single,
         toks,
         at: 0,
@@ -749,7 +865,7 @@ pub(super) fn parse_body(body: &str, what: &str) -> Result<Body> {
         stop: false,
         notes: Vec::new(),
     };
-    let els = p.list(None, 0)?;
+    let els = slips_between_yarn_moves(p.list(None, 0)?, what)?;
     let notes = std::mem::take(&mut p.notes);
     let count = els.iter().fold(None, |c, el| match el {
         El::Count(n) => Some(*n),
@@ -878,7 +994,7 @@ fn body_of(els: Vec<El>, what: &str, body: &str, last: bool) -> Result<Body> {
     for el in els {
         match el {
             El::Count(n) => out.count = Some(n),
-            El::Marker => {}
+            El::Marker | El::YarnTo { .. } => {}
             El::Stitch(s) => match stage {
                 0 => out.before.push(s),
                 1 => unit.push(s),

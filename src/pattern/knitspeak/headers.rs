@@ -23,6 +23,10 @@ pub(super) struct Header {
     /// `Set-up row (WS):`, `Foundation row:`: a row worked once before the repeat, which
     /// the repeat does not hold (its numbers, if any, are its own).
     pub(super) setup: bool,
+    /// The row named before the rows of a side or parity (`Row 1` of `Row 1 and every alt
+    /// row`, `Row 2` of `Row 2 and all WS rows`): one of them, and numbered, so that the
+    /// repeat starts no higher than it.
+    first: Option<usize>,
 }
 
 impl Header {
@@ -51,6 +55,7 @@ impl Header {
             round: self.round,
             side: self.side,
             setup: self.setup,
+            first: None,
         }
     }
 }
@@ -65,6 +70,25 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
     } else {
         None
     };
+    let first = h
+        .split_once(" and ")
+        .and_then(|(first, _)| {
+            strip_any(
+                first,
+                &["rows ", "row ", "rnds ", "rnd ", "rounds ", "round "],
+            )
+        })
+        .and_then(|n| n.trim().parse::<usize>().ok());
+    if let Some(rows) = alternate_rows(&h) {
+        let round = ["rnd", "round"].iter().any(|w| h.contains(w));
+        return Ok(Header {
+            rows,
+            round,
+            side: None,
+            setup: false,
+            first,
+        });
+    }
     // `All WS rows`, `Every RS row`, `Odd rows`, and `Row 2 and all foll WS rows` (row 2 is
     // one of them).
     let all = strip_any(&h, &["all ", "every "])
@@ -81,6 +105,7 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
             round: false,
             side: None,
             setup: false,
+            first,
         });
     }
     if h.starts_with("all ") {
@@ -109,6 +134,10 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
         words.replace_range(open..close, " ");
     }
     let mut numbers = Vec::new();
+    // `Rows 1 to 4`, `Rows 1 through 4` are `Rows 1-4`.
+    let words = [" to ", " through ", " thru "]
+        .iter()
+        .fold(words, |w, to| w.replace(to, "-"));
     for part in words.replace(" and ", ",").replace('&', ",").split(',') {
         let part = part.trim().trim_start_matches("and ").trim();
         if part.is_empty() {
@@ -135,6 +164,35 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
         round,
         side,
         setup,
+        first: None,
+    })
+}
+
+/// `Row 2 and every alt row`, `Row 2 and every foll alternate row`, `Every other row`, `All
+/// alt rnds` (lower case): every second row, counted from the row named (the even rows where
+/// none is). `None` for any other header.
+fn alternate_rows(h: &str) -> Option<Rows> {
+    let (base, rest) = match h.split_once(" and ") {
+        Some((first, rest)) => {
+            let n = strip_any(
+                first,
+                &["rows ", "row ", "rnds ", "rnd ", "rounds ", "round "],
+            )?;
+            (Some(n.trim().parse::<usize>().ok()?), rest.trim_start())
+        }
+        None => (None, h),
+    };
+    let rest = strip_any(rest, &["all ", "every "])?;
+    let rest = strip_any(rest, &["foll ", "following "]).unwrap_or(rest);
+    let rest = strip_any(rest, &["alt ", "alternate ", "other "])?;
+    ["rows", "row", "rnds", "rnd", "rounds", "round"]
+        .iter()
+        .any(|w| rest.starts_with(w))
+        .then_some(())?;
+    Some(if base.unwrap_or(2) % 2 == 0 {
+        Rows::AllEven
+    } else {
+        Rows::AllOdd
     })
 }
 
@@ -220,6 +278,20 @@ impl RowSheet {
     /// Records that statement `index`, whose header `what` reads as `header`, covers its rows.
     pub(super) fn cover(&mut self, header: Header, what: &str, index: usize) -> Result<()> {
         self.in_round |= header.round;
+        if let Some(n) = header.first {
+            // Numbered as `Row n:` is, so that the repeat starts no higher than row n.
+            self.cover(
+                Header {
+                    rows: Rows::Numbers(vec![n]),
+                    round: header.round,
+                    side: None,
+                    setup: false,
+                    first: None,
+                },
+                what,
+                index,
+            )?;
+        }
         match header.rows {
             Rows::AllOfSide(rs) => self.by_side[usize::from(rs)] = Some(index),
             Rows::AllEven => self.even = Some(index),

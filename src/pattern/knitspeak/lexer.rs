@@ -52,6 +52,127 @@ pub(super) fn walker_dashes(text: &str) -> std::borrow::Cow<'_, str> {
     std::borrow::Cow::Owned(out)
 }
 
+/// `text` with rows numbered as British patterns number them (`1st row (RS):`, `2nd and
+/// every alt row:`, `5th to 8th rows:`, `1st rnd:`, `Work as 3rd row.`) written as Knitspeak
+/// numbers them (`Row 1 (RS):`, `Row 2 and every alt row:`, `Rows 5-8:`, `Rnd 1:`, `Work as
+/// row 3.`): ordinals, joined by `,`, `and`, `to` or `-`, then a row word. Other text is
+/// left as it is.
+pub(super) fn ordinal_rows(text: &str) -> std::borrow::Cow<'_, str> {
+    // ASCII lower case keeps byte offsets, so they index `text` too.
+    let lower = text.to_ascii_lowercase();
+    let mut out = String::new();
+    let mut copied = 0;
+    let mut at = 0;
+    while at < lower.len() {
+        let boundary = !lower[..at]
+            .chars()
+            .next_back()
+            .is_some_and(char::is_alphanumeric);
+        let before = lower[..at].trim_end_matches([' ', '\t']);
+        let statement_start = before.is_empty() || before.ends_with(['\n', '.']);
+        let short = statement_start
+            .then(|| short_header(&lower[at..]))
+            .flatten();
+        let found = short.or_else(|| {
+            (boundary && lower.as_bytes()[at].is_ascii_digit())
+                .then(|| ordinal_header(&lower[at..]))
+                .flatten()
+        });
+        if let Some((len, rewritten)) = found {
+            out.push_str(&text[copied..at]);
+            out.push_str(&rewritten);
+            at += len;
+            copied = at;
+            continue;
+        }
+        at += lower[at..].chars().next().map_or(1, char::len_utf8);
+    }
+    if copied == 0 {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    out.push_str(&text[copied..]);
+    std::borrow::Cow::Owned(out)
+}
+
+/// `R1:`, `R2 (WS):` opening a statement -> (the length of `R1`, `Row 1`). `s` is lower case.
+fn short_header(s: &str) -> Option<(usize, String)> {
+    let rest = s.strip_prefix('r')?;
+    let digits = rest.bytes().take_while(u8::is_ascii_digit).count();
+    if digits == 0 || !rest[digits..].trim_start().starts_with([':', '(']) {
+        return None;
+    }
+    Some((1 + digits, format!("Row {}", &rest[..digits])))
+}
+
+/// One ordinal (`1st`, `22nd`, `3rd`, `4th`) at the start of `s`: its number and length.
+fn ordinal(s: &str) -> Option<(usize, usize)> {
+    let digits = s.bytes().take_while(u8::is_ascii_digit).count();
+    let suffix = s.get(digits..digits + 2)?;
+    if digits == 0 || !["st", "nd", "rd", "th"].contains(&suffix) {
+        return None;
+    }
+    let end = digits + 2;
+    if s[end..].starts_with(char::is_alphanumeric) {
+        return None;
+    }
+    Some((s[..digits].parse().ok()?, end))
+}
+
+/// `1st and 3rd rows` -> (its length, `Rows 1 and 3`); `2nd and every alt row` -> `Row 2`
+/// (the rest is a header the header reader knows). `s` is lower case.
+fn ordinal_header(s: &str) -> Option<(usize, String)> {
+    let (first, mut at) = ordinal(s)?;
+    let mut numbers = first.to_string();
+    let mut count = 1;
+    // Further ordinals: `, 3rd`, ` and 5th`, ` to 8th`, `-8th`.
+    loop {
+        let rest = &s[at..];
+        let joined = [
+            (", ", ", "),
+            (" and ", " and "),
+            (" & ", " and "),
+            (" to ", "-"),
+            ("-", "-"),
+            ("\u{2013}", "-"),
+        ]
+        .iter()
+        .find_map(|(w, as_)| {
+            let after = rest.strip_prefix(w)?;
+            let (n, len) = ordinal(after)?;
+            Some((rest.len() - after.len() + len, format!("{as_}{n}")))
+        });
+        let Some((len, part)) = joined else { break };
+        numbers.push_str(&part);
+        count += 1;
+        at += len;
+    }
+    let rest = &s[at..];
+    let word = [
+        ("rows", "Rows"),
+        ("row", "Row"),
+        ("rnds", "Rnds"),
+        ("rnd", "Rnd"),
+        ("rounds", "Rounds"),
+        ("round", "Round"),
+    ]
+    .iter()
+    .find_map(|(w, as_)| {
+        let after = rest.strip_prefix(' ')?.strip_prefix(w)?;
+        (!after.starts_with(char::is_alphanumeric)).then_some((w.len() + 1, *as_))
+    });
+    if let Some((len, as_)) = word {
+        return Some((at + len, format!("{as_} {numbers}")));
+    }
+    // `2nd and every alt row`, `2nd and all foll WS rows`: a row word later in the header.
+    let every = [" and every ", " and all ", " & every ", " & all "]
+        .iter()
+        .any(|w| rest.starts_with(w));
+    if count == 1 && every {
+        return Some((at, format!("Row {numbers}")));
+    }
+    None
+}
+
 /// Whether `lower` (lower case) starts with a row header: a header word, with a `:` after it.
 pub(super) fn opens_statement(lower: &str) -> bool {
     HEADER_WORDS.iter().any(|w| lower.starts_with(w)) && lower.contains(':')
@@ -134,8 +255,29 @@ pub(super) fn statements(text: &str) -> Statements {
     let mut out: Vec<(String, String)> = Vec::new();
     let mut notes = Vec::new();
     let mut skipped = Vec::new();
+    // Under a heading `Abbreviations` / `Special abbreviations`, up to the next row: the
+    // pattern's key, whose cable definitions are read apart ([`super::abbreviations`]).
+    let mut in_key = false;
     for line in text.lines() {
         let mut rest = line.trim();
+        let heading = rest.trim_end_matches([':', '.']).trim().to_lowercase();
+        if [
+            "abbreviations",
+            "special abbreviations",
+            "abbreviations used",
+            "key",
+        ]
+        .contains(&heading.as_str())
+        {
+            in_key = true;
+            continue;
+        }
+        if in_key {
+            if first_row_statement(rest) != Some(0) {
+                continue;
+            }
+            in_key = false;
+        }
         if out.is_empty() && preamble(rest) {
             // A row may follow on the same line (`Seed stitch. Row 1: *k1, p1; rep from *.`):
             // only the text before it is passed over.
@@ -168,6 +310,10 @@ pub(super) fn statements(text: &str) -> Statements {
                 Some(at) => rest = &rest[at..],
                 None => continue,
             }
+        }
+        // A cable the pattern defines (`C3B = sl 1 to cn, ...`), read before the rows.
+        if super::abbreviations::definition(rest).is_some() {
+            continue;
         }
         let lower = rest.to_lowercase();
         if ["note:", "notes:", "note ", "nb:"]
@@ -316,4 +462,37 @@ pub(super) fn tokens(body: &str) -> Vec<Tok> {
     }
     flush(&mut text, &mut out);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ordinal_rows;
+
+    #[test]
+    fn ordinal_rows_are_numbered_as_knitspeak_numbers_them() {
+        let cases = [
+            ("1st row (RS): Knit.", "Row 1 (RS): Knit."),
+            ("21st and 22nd rows: Purl.", "Rows 21 and 22: Purl."),
+            ("1st, 3rd & 5th rows: K.", "Rows 1, 3 and 5: K."),
+            ("5th to 8th rows: K.", "Rows 5-8: K."),
+            ("5th\u{2013}8th Rows: K.", "Rows 5-8: K."),
+            ("2nd and every alt row: P.", "Row 2 and every alt row: P."),
+            ("3rd rnd: As 1st rnd.", "Rnd 3: As Rnd 1."),
+            (
+                "R1: K. R2 (WS): P.\n  R3: K.",
+                "Row 1: K. Row 2 (WS): P.\n  Row 3: K.",
+            ),
+            ("K2, r1: k", "K2, r1: k"),
+            // Not a row's number: left as written.
+            ("K2, 3rd st, 1st", "K2, 3rd st, 1st"),
+            ("k21st row", "k21st row"),
+            (
+                "1st rows\u{e9}: \u{e9}1st row",
+                "1st rows\u{e9}: \u{e9}1st row",
+            ),
+        ];
+        for (text, read) in cases {
+            assert_eq!(ordinal_rows(text), read, "{text}");
+        }
+    }
 }

@@ -105,6 +105,7 @@
 //! count, its parts between markers); [`markers`] counts the parts of rows that work to a
 //! marker; [`layout`] lays the rows out on a piece and cuts one repeat.
 
+mod abbreviations;
 mod as_they_appear;
 mod body;
 mod headers;
@@ -144,6 +145,8 @@ enum Given {
 /// right side, row 1 at the bottom.
 pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
     let text = lexer::walker_dashes(text);
+    let text = lexer::ordinal_rows(&text);
+    let defined = abbreviations::defined(&text);
     let lexed = statements(&text);
     let statements = lexed.rows;
     // Only text around a pattern, one line of it a header that is no row's (`Stitch 1:`).
@@ -168,7 +171,7 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
             // counted, but not knitted: the repeat covers the surface.
             setups.push((
                 what.clone(),
-                parse_body(body, &what)?,
+                parse_body(body, &what, &defined)?,
                 rows.side(),
                 rows.round(),
             ));
@@ -179,9 +182,9 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
                 let parsed = match as_they_appear::as_they_appear(body) {
                     Some(faces) => Body {
                         faces,
-                        ..parse_body("Knit.", &what)?
+                        ..parse_body("Knit.", &what, &defined)?
                     },
-                    None => parse_body(body, &what)?,
+                    None => parse_body(body, &what, &defined)?,
                 };
                 sheet.cover(rows, &what, read.len())?;
                 read.push((what, Given::Body(parsed)));
@@ -306,7 +309,7 @@ fn setup_plans<'a>(
 /// Whether `text` looks like Knitspeak rather than a symbol chart: some line opens with a row
 /// header (`Row 1 (RS):`), whatever title, notes or cast-on come before it.
 pub fn looks_like_knitspeak(text: &str) -> bool {
-    lexer::walker_dashes(text)
+    lexer::ordinal_rows(&lexer::walker_dashes(text))
         .lines()
         .any(|line| lexer::first_row_statement(line).is_some())
 }

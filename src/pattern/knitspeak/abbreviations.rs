@@ -1,0 +1,251 @@
+//! A pattern's own abbreviations for its cables, as printed patterns define them in their key
+//! (`C3B = sl 1 st to cn, hold at back, k2, k1 from cn.`, `Cr3L: Slip next 2 sts onto cable
+//! needle and leave at front of work, P1, then K2 from cable needle.`): each definition a
+//! cable needle's working spells out is read as the cross it works, and the pattern's rows
+//! then read its name as that cross, before the reader's own reading of the name (a
+//! publisher's `T3B` may not be the reader's). Definitions of anything else are left to the
+//! lines around the pattern, which the reader passes over.
+
+use crate::pattern::instruction::{Instruction, MAX_CROSS_SIDE};
+use crate::pattern::vocabulary::normal_form;
+
+/// The abbreviations a text defines: `(name in normal form, the cross it works)`, in the
+/// order written.
+pub(super) type Defined = Vec<(String, Instruction)>;
+
+/// Every cable definition among the lines of `text` ([`definition`]).
+pub(super) fn defined(text: &str) -> Defined {
+    text.lines().filter_map(definition).collect()
+}
+
+/// `line` read as a cable's definition: a name, then `=`, `:` or a dash, then the working of
+/// a cross with a cable needle. `None` for any other line (row statements included: no row
+/// header spells out a cable needle's working).
+pub(super) fn definition(line: &str) -> Option<(String, Instruction)> {
+    let line = line.trim();
+    let (at, sep) = [
+        " = ",
+        "=",
+        ": ",
+        " - ",
+        " \u{2013} ",
+        " \u{2014} ",
+        "\u{2014}",
+    ]
+    .iter()
+    .filter_map(|sep| line.find(sep).map(|at| (at, sep.len())))
+    .min_by_key(|&(at, _)| at)?;
+    let name = line[..at].trim();
+    // A name is an abbreviation, not a sentence (`Row 1`, `C4B`, `2/1 RPC` at most).
+    if name.is_empty() || name.len() > 12 || name.split_whitespace().count() > 2 {
+        return None;
+    }
+    let cross = worked_cross(&line[at + sep..])?;
+    Some((normal_form(name), cross))
+}
+
+/// One step of a cable needle's working.
+#[derive(Debug, PartialEq)]
+enum Step {
+    /// `sl 2 to cn`: stitches slipped to the cable needle.
+    ToNeedle(usize),
+    /// `hold at back` (false) / `hold in front` (true).
+    Hold { front: bool },
+    /// `k2`, `p1`: stitches worked off the left needle.
+    Work { purl: bool, count: usize },
+    /// `k2 from cn`: the held stitches worked.
+    FromNeedle { purl: bool, count: usize },
+}
+
+/// The cross `text` (a definition's working) spells out, or `None` where it is not exactly
+/// "slip to a cable needle, hold it in front or at back, work from the left needle, work
+/// from the cable needle" with the front group knitted.
+fn worked_cross(text: &str) -> Option<Instruction> {
+    let steps = steps(text)?;
+    let [Step::ToNeedle(held), Step::Hold { front }, Step::Work { purl, count }, Step::FromNeedle {
+        purl: held_purl,
+        count: held_count,
+    }] = steps.as_slice()
+    else {
+        return None;
+    };
+    if held != held_count {
+        return None;
+    }
+    let (worked, held) = (*count, *held);
+    // Held in front, the held stitches travel left in front and the worked ones pass behind
+    // (purled in an `LPC`); held at back, the worked stitches travel right in front.
+    let (m, n, front_purl, back_purl) = if *front {
+        (held, worked, *held_purl, *purl)
+    } else {
+        (worked, held, *purl, *held_purl)
+    };
+    let side = 1..=usize::from(MAX_CROSS_SIDE);
+    if front_purl || !side.contains(&m) || !side.contains(&n) {
+        return None;
+    }
+    Some(Instruction::Cross {
+        m: m as u8,
+        n: n as u8,
+        left: *front,
+        purl_back: back_purl,
+    })
+}
+
+/// The steps of a cable needle's working, in order; `None` where a word is none of them.
+fn steps(text: &str) -> Option<Vec<Step>> {
+    let lower = text
+        .to_lowercase()
+        .replace("cable needle", "cn")
+        .replace(['.', ',', ';', '(', ')'], " ");
+    // Words that say nothing the steps need.
+    const FILLER: [&str; 14] = [
+        "next", "the", "of", "work", "then", "and", "a", "st", "sts", "stitch", "stitches",
+        "needle", "left", "to",
+    ];
+    let words: Vec<&str> = lower
+        .split_whitespace()
+        .filter(|w| !FILLER.contains(w))
+        .collect();
+    let mut steps = Vec::new();
+    let mut i = 0;
+    // A count written after its verb (`k 2`, `slip 2`), or none (1).
+    let count_at = |i: usize| -> (usize, usize) {
+        match words.get(i).and_then(|w| w.parse::<usize>().ok()) {
+            Some(n) => (n, 1),
+            None => (1, 0),
+        }
+    };
+    while i < words.len() {
+        let w = words[i];
+        let (verb, glued) = split_count(w)?;
+        match verb {
+            "sl" | "slip" => {
+                let (n, used) = glued.map_or_else(|| count_at(i + 1), |n| (n, 0));
+                i += 1 + used;
+                // `onto cn`, `on cn`, `to cn` (`to` is filler).
+                while matches!(words.get(i), Some(&("onto" | "on"))) {
+                    i += 1;
+                }
+                if words.get(i) != Some(&"cn") {
+                    return None;
+                }
+                i += 1;
+                steps.push(Step::ToNeedle(n));
+            }
+            "hold" | "leave" | "held" => {
+                i += 1;
+                while matches!(words.get(i), Some(&("at" | "in" | "to"))) {
+                    i += 1;
+                }
+                let front = match words.get(i) {
+                    Some(&"front") => true,
+                    Some(&"back") => false,
+                    _ => return None,
+                };
+                i += 1;
+                steps.push(Step::Hold { front });
+            }
+            "k" | "knit" | "p" | "purl" => {
+                let purl = matches!(verb, "p" | "purl");
+                let (count, used) = glued.map_or_else(|| count_at(i + 1), |n| (n, 0));
+                i += 1 + used;
+                if words.get(i) == Some(&"from") {
+                    if words.get(i + 1) != Some(&"cn") {
+                        return None;
+                    }
+                    i += 2;
+                    steps.push(Step::FromNeedle { purl, count });
+                } else {
+                    steps.push(Step::Work { purl, count });
+                }
+            }
+            _ => return None,
+        }
+    }
+    Some(steps)
+}
+
+/// `k2` -> (`k`, Some(2)); `slip` -> (`slip`, None); `2k` -> None.
+fn split_count(word: &str) -> Option<(&str, Option<usize>)> {
+    let digits = word.len() - word.trim_end_matches(|c: char| c.is_ascii_digit()).len();
+    let (verb, count) = word.split_at(word.len() - digits);
+    if verb.is_empty() {
+        return None;
+    }
+    if count.is_empty() {
+        return Some((verb, None));
+    }
+    Some((verb, Some(count.parse().ok()?)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cross(m: u8, n: u8, left: bool, purl_back: bool) -> Instruction {
+        Instruction::Cross {
+            m,
+            n,
+            left,
+            purl_back,
+        }
+    }
+
+    #[test]
+    fn cable_definitions_read_as_the_cross_they_work() {
+        let cases = [
+            (
+                "C4B = sl 2 to cn, hold at back, k2, k2 from cn.",
+                "c4b",
+                cross(2, 2, false, false),
+            ),
+            (
+                "C3B: slip 1 st to cn, hold in back, k2, k1 from cn",
+                "c3b",
+                cross(2, 1, false, false),
+            ),
+            (
+                "Cr3L - Slip next 2 sts onto cable needle and leave at front of work, P1, then K2 \
+                 from cable needle.",
+                "cr3l",
+                cross(2, 1, true, true),
+            ),
+            (
+                "T3B = sl1 to cn, hold at back, k2, p1 from cn",
+                "t3b",
+                cross(2, 1, false, true),
+            ),
+            (
+                "C6F: sl 3 sts to cn and hold in front, knit 3, knit 3 from cn",
+                "c6f",
+                cross(3, 3, true, false),
+            ),
+            (
+                "2/1 LPC: sl 2 to cn, hold in front, p1, k2 from cn",
+                "2/1 lpc",
+                cross(2, 1, true, true),
+            ),
+        ];
+        for (line, name, ins) in cases {
+            assert_eq!(definition(line), Some((name.to_string(), ins)), "{line}");
+        }
+    }
+
+    #[test]
+    fn other_lines_define_nothing() {
+        for line in [
+            "Row 1 (RS): *P2, C4B, p2; rep from *.",
+            "C4B = sl 2 to cn, hold at back, k2, k3 from cn.",
+            "C4B = sl 2 to cn, hold at back, p2, k2 from cn.",
+            "C4F = sl 2 to cn, hold in front, k2, p2 from cn.",
+            "MB = (k1, p1, k1) in next st, turn, p3, turn, sk2p.",
+            "Tw2 = k2tog leaving sts on needle, knit first st again.",
+            "C14B = sl 7 to cn, hold at back, k7, k7 from cn.",
+            "Note: slip sts purlwise.",
+            "C4B = sl 2 to cn, k2, k2 from cn.",
+        ] {
+            assert_eq!(definition(line), None, "{line}");
+        }
+    }
+}
