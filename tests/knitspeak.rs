@@ -1772,6 +1772,12 @@ fn british_row_numbers_and_alternate_rows_read() {
         &ks("Rnd 1: Knit.\nRnd 2: Purl.\nRnd 3: *K1, p1; rep from *.\nRnd 4: Purl."),
         same_cells,
     );
+    // A spaced dash for the colon, as pattern pages write it.
+    all_read_as(
+        &["Row 1 (RS) - Knit.\nRow 2 \u{2013} Purl.\nRow 3 - Purl. Row 4 - Knit."],
+        &ks("Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Purl.\nRow 4: Knit."),
+        same_cells,
+    );
     // `R1:` as pattern pages shorten it.
     all_read_as(
         &["R1 (RS): Knit.\nR2: Purl.\nR3: Purl.\nR4: Knit."],

@@ -52,6 +52,43 @@ pub(super) fn walker_dashes(text: &str) -> std::borrow::Cow<'_, str> {
     std::borrow::Cow::Owned(out)
 }
 
+/// `text` with a spaced hyphen or en dash after a row header (`Row 1 (RS) - K2, p2.`, as
+/// pattern pages write it) read as the `:` other texts put there: each whose sentence (from
+/// the line's start or the last full stop) opens with a header that reads as rows, with no
+/// `:` before the dash or after it in that sentence (`Rows 1 - 4: Knit.` is a range).
+pub(super) fn spaced_dashes(text: &str) -> std::borrow::Cow<'_, str> {
+    const DASHES: [&str; 2] = [" - ", " \u{2013} "];
+    if !DASHES.iter().any(|d| text.contains(d)) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len());
+    let mut at = 0;
+    while at < text.len() {
+        let rest = &text[at..];
+        let dash = DASHES.iter().find(|d| rest.starts_with(**d));
+        if let Some(dash) = dash {
+            let start = out.rfind(['.', '\n']).map_or(0, |i| i + 1);
+            let before = &out[start..];
+            let after = &rest[dash.len()..];
+            let after = &after[..after.find(['.', '\n']).unwrap_or(after.len())];
+            let lower = before.trim_start().to_lowercase();
+            let header = HEADER_WORDS.iter().any(|w| lower.starts_with(w))
+                && !before.contains(':')
+                && !after.contains(':')
+                && super::headers::parse_header(before).is_ok();
+            if header {
+                out.push_str(": ");
+                at += dash.len();
+                continue;
+            }
+        }
+        let Some(ch) = rest.chars().next() else { break };
+        out.push(ch);
+        at += ch.len_utf8();
+    }
+    std::borrow::Cow::Owned(out)
+}
+
 /// `text` with rows numbered as British patterns number them (`1st row (RS):`, `2nd and
 /// every alt row:`, `5th to 8th rows:`, `1st rnd:`, `Work as 3rd row.`) written as Knitspeak
 /// numbers them (`Row 1 (RS):`, `Row 2 and every alt row:`, `Rows 5-8:`, `Rnd 1:`, `Work as
@@ -467,6 +504,24 @@ pub(super) fn tokens(body: &str) -> Vec<Tok> {
 #[cfg(test)]
 mod tests {
     use super::ordinal_rows;
+
+    #[test]
+    fn a_spaced_dash_after_a_header_is_its_colon() {
+        let cases = [
+            (
+                "Row 1 (RS) - K2, p2.\nRow 2 \u{2013} Purl.",
+                "Row 1 (RS): K2, p2.\nRow 2: Purl.",
+            ),
+            ("Row 1 - Knit. Row 2 - Purl.", "Row 1: Knit. Row 2: Purl."),
+            // A range, a dash in a body, and a dash after no header stay.
+            ("Rows 1 - 4: Knit.", "Rows 1 - 4: Knit."),
+            ("Row 1: K2 - p2.", "Row 1: K2 - p2."),
+            ("Cable rib - a classic.", "Cable rib - a classic."),
+        ];
+        for (text, read) in cases {
+            assert_eq!(super::spaced_dashes(text), read, "{text}");
+        }
+    }
 
     #[test]
     fn ordinal_rows_are_numbered_as_knitspeak_numbers_them() {
