@@ -1778,6 +1778,15 @@ fn british_row_numbers_and_alternate_rows_read() {
         &ks("Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Purl.\nRow 4: Knit."),
         same_cells,
     );
+    // Rows named for the part they knit.
+    all_read_as(
+        &[
+            "Rib rows are worked first.\nRib row 1 (RS): Knit.\nRib row 2: Purl.\n\
+           Patt row 3: Purl. Pattern row 4: Knit.",
+        ],
+        &ks("Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Purl.\nRow 4: Knit."),
+        same_cells,
+    );
     // `R1:` as pattern pages shorten it.
     all_read_as(
         &["R1 (RS): Knit.\nR2: Purl.\nR3: Purl.\nR4: Knit."],

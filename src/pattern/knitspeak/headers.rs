@@ -63,6 +63,10 @@ impl Header {
 /// Reads a header (the text before a statement's `:`).
 pub(super) fn parse_header(header: &str) -> Result<Header> {
     let h = header.trim().to_lowercase();
+    // `Rib row 1`, `Patt row 3`, `Pattern rnd 2`: the rows of the part named.
+    let h = strip_any(&h, &["rib ", "patt ", "pattern "])
+        .filter(|r| ["row", "rnd", "round"].iter().any(|w| r.starts_with(w)))
+        .map_or_else(|| h.clone(), str::to_string);
     let side = if h.contains("(rs)") || h.contains("right side") {
         Some(true)
     } else if h.contains("(ws)") || h.contains("wrong side") {

@@ -4,8 +4,15 @@
 
 /// Words a statement's header starts with (lower case). Also how a Knitspeak text is told from
 /// a chart ([`super::looks_like_knitspeak`]), so both read headers alike.
-const HEADER_WORDS: [&str; 15] = [
+const HEADER_WORDS: [&str; 21] = [
     "row",
+    // `Rib row 1:`, `Patt row 3:`, `Pattern rnd 2:`: a row of the named part.
+    "rib row",
+    "rib rnd",
+    "patt row",
+    "patt rnd",
+    "pattern row",
+    "pattern rnd",
     "rnd",
     "round",
     "all ",
@@ -231,7 +238,14 @@ pub(super) fn opens_row_statement(line: &str) -> bool {
 /// is read as a row, so that a malformed header is reported, not skipped.
 fn preamble(line: &str) -> bool {
     let lower = line.trim().to_lowercase();
-    title(line) || !HEADER_WORDS.iter().any(|w| lower.starts_with(w))
+    // A line opening with a part's name (`Rib rows are worked ...`) is a row only where its
+    // header reads as one.
+    let part = ["rib ", "patt ", "pattern "]
+        .iter()
+        .any(|w| lower.starts_with(w));
+    title(line)
+        || !HEADER_WORDS.iter().any(|w| lower.starts_with(w))
+        || (part && !opens_row_statement(line))
 }
 
 /// Lines that say something true of the pattern but nothing a chart needs.
