@@ -1874,3 +1874,37 @@ fn a_patterns_own_cable_abbreviations_read_as_they_are_defined() {
         &ks("Row 1 (RS): *P2, 2/1 LC; rep from *.\nRow 2: *P3, k2; rep from *.")
     ));
 }
+
+/// A second repeat that works the stitches a first one left (`*k2, p2; rep from * to last 4
+/// sts, *k1, p1; rep from * to end`) is worked over them in place; one that does not fill
+/// them is refused with both counts.
+#[test]
+fn a_second_repeat_works_what_the_first_left() {
+    all_read_as(
+        &[
+            "Row 1 (RS): *K2, p2; rep from * to last 4 sts, *k1, p1; rep from * to end.\n\
+           Row 2: P4, *k2, p2; rep from *.",
+        ],
+        &ks(
+            "Row 1 (RS): *K2, p2; rep from * to last 4 sts, k1, p1, k1, p1.\n\
+             Row 2: P4, *k2, p2; rep from *.",
+        ),
+        same_cells,
+    );
+    all_read_as(
+        &[
+            "Row 1 (RS): *K2, p2; rep from * to last 6 sts, *k1, p1; rep from * to last 2 \
+           sts, k2.\nRow 2: P6, *k2, p2; rep from *.",
+        ],
+        &ks(
+            "Row 1 (RS): *K2, p2; rep from * to last 6 sts, k1, p1, k1, p1, k2.\n\
+             Row 2: P6, *k2, p2; rep from *.",
+        ),
+        same_cells,
+    );
+    refused(&[(
+        "Row 1 (RS): *K2, p2; rep from * to last 5 sts, *k1, p1; rep from * to end.\n\
+         Row 2: Purl.",
+        "this repeat of 2 stitches does not fill the 5 stitches the repeat before it left",
+    )]);
+}

@@ -987,20 +987,30 @@ fn body_of(els: Vec<El>, what: &str, body: &str, last: bool) -> Result<Body> {
         ))),
         u => Ok(u),
     };
-    // 0: before the repeat, 1: inside it, 2: after it.
+    // 0: before the repeat, 1: inside it, 2: after it, 3: inside a second repeat that works
+    // the stitches the first left (`*k2, p2; rep from * to last 4 sts, *k1, p1; rep from *
+    // to end`).
     let mut stage = 0;
     let mut unit = Vec::new();
     let mut star_at = 0;
+    // Stitches the first repeat left, for a second one.
+    let mut left = 0;
     for el in els {
         match el {
             El::Count(n) => out.count = Some(n),
             El::Marker | El::YarnTo { .. } => {}
             El::Stitch(s) => match stage {
                 0 => out.before.push(s),
-                1 => unit.push(s),
+                1 | 3 => unit.push(s),
                 _ => out.after.push(s),
             },
             El::RepStart(at, _) => {
+                if let (2, Some((_, Until::Last(n)))) = (stage, &out.repeat) {
+                    left = *n;
+                    stage = 3;
+                    star_at = at;
+                    continue;
+                }
                 if stage != 0 {
                     return Err(KnitError::Pattern(format!(
                         "{what}, instruction {at}: a second '*' repeat in one row; knitwear \
@@ -1009,6 +1019,35 @@ fn body_of(els: Vec<El>, what: &str, body: &str, last: bool) -> Result<Body> {
                 }
                 stage = 1;
                 star_at = at;
+            }
+            El::RepEnd(u, at) if stage == 3 => {
+                // Worked over what the first repeat left, less the stitches between them and
+                // those this one leaves in turn.
+                let worked = loops_in(&out.after);
+                let width = loops_in(&unit);
+                let times = match u {
+                    Until::Times(t) => Some(t),
+                    Until::End | Until::Last(_) | Until::Marker(_) => {
+                        let leaves = match to_end(u, at)? {
+                            Until::Last(m) => m,
+                            _ => 0,
+                        };
+                        let span = left.saturating_sub(worked + leaves);
+                        (width > 0 && span > 0 && span % width == 0).then(|| span / width)
+                    }
+                };
+                let Some(times) = times else {
+                    return Err(KnitError::Pattern(format!(
+                        "{what}, instruction {at}: this repeat of {width} stitches does not \
+                         fill the {left} stitches the repeat before it left ({worked} already \
+                         worked)"
+                    )));
+                };
+                for _ in 0..times {
+                    out.after.extend_from_slice(&unit);
+                }
+                unit.clear();
+                stage = 2;
             }
             El::RepEnd(u, at) => {
                 if stage != 1 {
@@ -1058,7 +1097,7 @@ fn body_of(els: Vec<El>, what: &str, body: &str, last: bool) -> Result<Body> {
             }
         }
     }
-    if stage == 1 {
+    if stage == 1 || stage == 3 {
         return Err(KnitError::Pattern(format!(
             "{what}: the repeat that starts with '*' (instruction {star_at}) never says \
              \"rep from *\""
