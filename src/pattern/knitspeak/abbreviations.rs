@@ -13,17 +13,32 @@ use crate::pattern::vocabulary::normal_form;
 /// order written.
 pub(super) type Defined = Vec<(String, Instruction)>;
 
-/// Every cable definition among the lines of `text` ([`definition`]).
+/// Every cable definition among the sentences of `text` ([`definition`]): a key may share a
+/// line with the rows (a pattern pasted into one line of the add-on's field).
 pub(super) fn defined(text: &str) -> Defined {
-    text.lines().filter_map(definition).collect()
+    text.lines()
+        .flat_map(|line| line.split('.'))
+        .filter_map(definition)
+        .collect()
 }
 
-/// `line` read as a cable's definition: a name, then `=`, `:` or a dash, then the working of
-/// a cross with a cable needle. `None` for any other line (row statements included: no row
-/// header spells out a cable needle's working).
-pub(super) fn definition(line: &str) -> Option<(String, Instruction)> {
-    let line = line.trim();
-    let (at, sep) = [
+/// Whether `line` holds nothing but cable definitions (`C3B = sl 1 to cn, hold at back, k2,
+/// k1 from cn. C3F = ...`): a line of the key, which the rows do not read.
+pub(super) fn only_definitions(line: &str) -> bool {
+    let mut sentences = line.split('.').filter(|s| !s.trim().is_empty()).peekable();
+    sentences.peek().is_some() && sentences.all(|s| definition(s).is_some())
+}
+
+/// `sentence` read as a cable's definition: a name, then `=`, `:` or a dash, then the working
+/// of a cross with a cable needle. The name is the word before the separator, or the two
+/// words of a cross's name (`2/1 RPC`), so a heading may come before it (`Special
+/// abbreviations: C3B = ...`). `None` for any other sentence (row statements included).
+pub(super) fn definition(sentence: &str) -> Option<(String, Instruction)> {
+    let s = sentence.trim();
+    if super::lexer::opens_row_statement(s) {
+        return None;
+    }
+    let mut seps: Vec<(usize, usize)> = [
         " = ",
         "=",
         ": ",
@@ -33,15 +48,21 @@ pub(super) fn definition(line: &str) -> Option<(String, Instruction)> {
         "\u{2014}",
     ]
     .iter()
-    .filter_map(|sep| line.find(sep).map(|at| (at, sep.len())))
-    .min_by_key(|&(at, _)| at)?;
-    let name = line[..at].trim();
-    // A name is an abbreviation, not a sentence (`Row 1`, `C4B`, `2/1 RPC` at most).
-    if name.is_empty() || name.len() > 12 || name.split_whitespace().count() > 2 {
-        return None;
-    }
-    let cross = worked_cross(&line[at + sep..])?;
-    Some((normal_form(name), cross))
+    .flat_map(|sep| s.match_indices(sep).map(|(at, m)| (at, m.len())))
+    .collect();
+    seps.sort_unstable();
+    seps.into_iter().find_map(|(at, len)| {
+        let words: Vec<&str> = s[..at].split_whitespace().collect();
+        let name = match words.as_slice() {
+            [.., a, b] if a.contains('/') => format!("{a} {b}"),
+            [.., b] => (*b).to_string(),
+            [] => return None,
+        };
+        if name.len() > 12 {
+            return None;
+        }
+        Some((normal_form(&name), worked_cross(&s[at + len..])?))
+    })
 }
 
 /// One step of a cable needle's working.

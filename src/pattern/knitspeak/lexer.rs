@@ -363,7 +363,7 @@ pub(super) fn statements(text: &str) -> Statements {
             }
         }
         // A cable the pattern defines (`C3B = sl 1 to cn, ...`), read before the rows.
-        if super::abbreviations::definition(rest).is_some() {
+        if super::abbreviations::only_definitions(rest) {
             continue;
         }
         let lower = rest.to_lowercase();
