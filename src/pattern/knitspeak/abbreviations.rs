@@ -35,7 +35,10 @@ pub(super) fn only_definitions(line: &str) -> bool {
 /// abbreviations: C3B = ...`). `None` for any other sentence (row statements included).
 pub(super) fn definition(sentence: &str) -> Option<(String, Instruction)> {
     let s = sentence.trim();
-    if super::lexer::opens_row_statement(s) {
+    // A row statement (`Row 1 (RS): ...`) defines nothing.
+    if s.split_once(':')
+        .is_some_and(|(header, _)| super::headers::parse_header(header).is_ok())
+    {
         return None;
     }
     let mut seps: Vec<(usize, usize)> = [
