@@ -41,6 +41,15 @@ def test_pasted_cable_knitspeak_knits_like_the_cable_preset(api: ModuleType) -> 
         source, **SMALL, pattern="CUSTOM", pattern_chart=around.replace("\n", " ")
     )
     np.testing.assert_array_equal(pasted.vertices, preset.vertices)
+    # Written as a British pattern prints it, its own key on the same line.
+    british = (
+        "Cable rib. Special abbreviations: C4B = slip next 2 sts onto cable needle and hold "
+        "at back of work, K2, then K2 from cable needle. 1st and 5th rows (RS): P2, *k4, p2; "
+        "rep from * to end. 2nd and every alt row: K2, *p4, k2; rep from * to end. 3rd row: "
+        "P2, *C4B, p2; rep from * to end."
+    )
+    pasted = api.knit_result(source, **SMALL, pattern="CUSTOM", pattern_chart=british)
+    np.testing.assert_array_equal(pasted.vertices, preset.vertices)
     # And the operator takes it as the sidebar passes it, storing it on the knit.
     assert bpy.ops.object.knitwear_knit(**SMALL, pattern="CUSTOM", pattern_chart=CABLE) == {
         "FINISHED"
