@@ -1912,3 +1912,14 @@ fn a_second_repeat_works_what_the_first_left() {
         "this repeat of 2 stitches does not fill the 5 stitches the repeat before it left",
     )]);
 }
+
+/// An instruction run on for pages (no comma or full stop) is refused at once, by its
+/// length, not read at every space of it.
+#[test]
+fn a_run_on_instruction_is_refused_by_its_length() {
+    let text = format!("Row 1: {}\nRow 2: Purl.", "k1 - ".repeat(20_000).trim_end());
+    refused(&[(
+        &text,
+        "runs 99999 characters without a comma or a full stop",
+    )]);
+}

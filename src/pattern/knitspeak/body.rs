@@ -14,6 +14,9 @@ use crate::pattern::vocabulary::{
     suggest, Stitched,
 };
 
+/// The longest instruction read, in bytes (`k2tog through the back loops 3 times` is 36).
+const MAX_INSTRUCTION: usize = 160;
+
 /// How an open repeat ends.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Until {
@@ -657,6 +660,18 @@ impl BodyParser<'_> {
             return Ok(());
         }
         self.instruction += 1;
+        // No instruction is this long; reading one (its runs split at every space, its
+        // closest stitch) costs the square of its length.
+        if lower.len() > MAX_INSTRUCTION {
+            let cut: String = t.trim().chars().take(40).collect();
+            return Err(KnitError::Pattern(format!(
+                "{}, instruction {}: \"{cut}...\" runs {} characters without a comma or a \
+                 full stop: no instruction is that long (separate the instructions with commas)",
+                self.what,
+                self.instruction,
+                t.trim().chars().count()
+            )));
+        }
         if is_marker(lower) {
             els.push(El::Marker);
             return Ok(());

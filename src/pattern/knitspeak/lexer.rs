@@ -59,6 +59,9 @@ pub(super) fn walker_dashes(text: &str) -> std::borrow::Cow<'_, str> {
     std::borrow::Cow::Owned(out)
 }
 
+/// The longest header a spaced dash may follow, in bytes.
+const MAX_HEADER: usize = 80;
+
 /// `text` with a spaced hyphen or en dash after a row header (`Row 1 (RS) - K2, p2.`, as
 /// pattern pages write it) read as the `:` other texts put there: each whose sentence (from
 /// the line's start or the last full stop) opens with a header that reads as rows, with no
@@ -69,21 +72,25 @@ pub(super) fn spaced_dashes(text: &str) -> std::borrow::Cow<'_, str> {
         return std::borrow::Cow::Borrowed(text);
     }
     let mut out = String::with_capacity(text.len());
+    // Where the sentence being copied starts in `out`.
+    let mut sentence = 0;
     let mut at = 0;
     while at < text.len() {
         let rest = &text[at..];
         let dash = DASHES.iter().find(|d| rest.starts_with(**d));
-        if let Some(dash) = dash {
-            let start = out.rfind(['.', '\n']).map_or(0, |i| i + 1);
-            let before = &out[start..];
-            let after = &rest[dash.len()..];
-            let after = &after[..after.find(['.', '\n']).unwrap_or(after.len())];
+        // A header is short: a longer sentence is no header, and is not read again at each
+        // dash it holds.
+        if let Some(dash) = dash.filter(|_| out.len() - sentence <= MAX_HEADER) {
+            let before = &out[sentence..];
             let lower = before.trim_start().to_lowercase();
             let header = HEADER_WORDS.iter().any(|w| lower.starts_with(w))
                 && !before.contains(':')
-                && !after.contains(':')
                 && super::headers::parse_header(before).is_ok();
-            if header {
+            let colon_after = || {
+                let after = &rest[dash.len()..];
+                after[..after.find(['.', '\n']).unwrap_or(after.len())].contains(':')
+            };
+            if header && !colon_after() {
                 out.push_str(": ");
                 at += dash.len();
                 continue;
@@ -91,6 +98,9 @@ pub(super) fn spaced_dashes(text: &str) -> std::borrow::Cow<'_, str> {
         }
         let Some(ch) = rest.chars().next() else { break };
         out.push(ch);
+        if matches!(ch, '.' | '\n') {
+            sentence = out.len();
+        }
         at += ch.len_utf8();
     }
     std::borrow::Cow::Owned(out)
@@ -107,13 +117,13 @@ pub(super) fn ordinal_rows(text: &str) -> std::borrow::Cow<'_, str> {
     let mut out = String::new();
     let mut copied = 0;
     let mut at = 0;
+    // The character just before `at`, and the last one before it that is no space or tab:
+    // kept as the scan goes, so that the scan stays linear in the text.
+    let mut prev: Option<char> = None;
+    let mut last_solid: Option<char> = None;
     while at < lower.len() {
-        let boundary = !lower[..at]
-            .chars()
-            .next_back()
-            .is_some_and(char::is_alphanumeric);
-        let before = lower[..at].trim_end_matches([' ', '\t']);
-        let statement_start = before.is_empty() || before.ends_with(['\n', '.']);
+        let boundary = !prev.is_some_and(char::is_alphanumeric);
+        let statement_start = last_solid.is_none_or(|c| matches!(c, '\n' | '.'));
         let short = statement_start
             .then(|| short_header(&lower[at..]))
             .flatten();
@@ -122,14 +132,23 @@ pub(super) fn ordinal_rows(text: &str) -> std::borrow::Cow<'_, str> {
                 .then(|| ordinal_header(&lower[at..]))
                 .flatten()
         });
-        if let Some((len, rewritten)) = found {
+        let (len, rewritten) = match found {
+            Some((len, rewritten)) => (len, Some(rewritten)),
+            None => (lower[at..].chars().next().map_or(1, char::len_utf8), None),
+        };
+        let consumed = &lower[at..at + len];
+        prev = consumed.chars().next_back().or(prev);
+        last_solid = consumed
+            .chars()
+            .rev()
+            .find(|c| !matches!(c, ' ' | '\t'))
+            .or(last_solid);
+        if let Some(rewritten) = rewritten {
             out.push_str(&text[copied..at]);
             out.push_str(&rewritten);
-            at += len;
-            copied = at;
-            continue;
+            copied = at + len;
         }
-        at += lower[at..].chars().next().map_or(1, char::len_utf8);
+        at += len;
     }
     if copied == 0 {
         return std::borrow::Cow::Borrowed(text);
@@ -147,6 +166,9 @@ fn short_header(s: &str) -> Option<(usize, String)> {
     }
     Some((1 + digits, format!("Row {}", &rest[..digits])))
 }
+
+/// The most ordinals one header joins (`1st, 3rd, 5th and 7th rows`).
+const MAX_ORDINALS: usize = 32;
 
 /// One ordinal (`1st`, `22nd`, `3rd`, `4th`) at the start of `s`: its number and length.
 fn ordinal(s: &str) -> Option<(usize, usize)> {
@@ -189,6 +211,11 @@ fn ordinal_header(s: &str) -> Option<(usize, String)> {
         numbers.push_str(&part);
         count += 1;
         at += len;
+        // No header names this many rows one by one; a bound keeps a long run of ordinals
+        // from being read again from each of them.
+        if count >= MAX_ORDINALS {
+            return None;
+        }
     }
     let rest = &s[at..];
     let word = [
