@@ -3,11 +3,34 @@
 //! hole clearly larger than the gaps between ordinary stitches.
 
 use glam::{Vec2, Vec3};
-use knitwear::knit::{KnitParams, PreparedKnit};
+use knitwear::knit::{KnitOutput, KnitParams, PreparedKnit};
 use knitwear::lattice::ROW_OVERHANG;
 use knitwear::metrics::{cover, cover_mask, holes};
 use knitwear::pattern::{Form, StitchPattern};
+use knitwear::skeleton::bobbles;
 use knitwear::surface::PlaneSurface;
+
+/// The knit's centreline samples as points.
+fn centreline(out: &KnitOutput) -> Vec<Vec3> {
+    out.centerline
+        .chunks(3)
+        .map(|c| Vec3::new(c[0], c[1], c[2]))
+        .collect()
+}
+
+/// Each yarn piece of `out` as a polyline of `points` (its [`centreline`]), and whether it
+/// is closed.
+fn yarns<'a>(out: &KnitOutput, points: &'a [Vec3]) -> Vec<(&'a [Vec3], bool)> {
+    let o = &out.yarn_offsets;
+    (0..out.yarn_closed.len())
+        .map(|i| {
+            (
+                &points[o[i] as usize..o[i + 1] as usize],
+                out.yarn_closed[i],
+            )
+        })
+        .collect()
+}
 
 /// Pixels across the 8 cm window: 67 micrometres each, a fifteenth of the default yarn.
 const RESOLUTION: usize = 1200;
@@ -31,20 +54,8 @@ fn yarn_over_holes(preset: &str, chart: &str) -> (Vec<usize>, usize) {
         .unwrap()
         .build(&sheet)
         .unwrap();
-    let points: Vec<Vec3> = out
-        .centerline
-        .chunks(3)
-        .map(|c| Vec3::new(c[0], c[1], c[2]))
-        .collect();
-    let o = &out.yarn_offsets;
-    let yarns: Vec<(&[Vec3], bool)> = (0..out.yarn_closed.len())
-        .map(|i| {
-            (
-                &points[o[i] as usize..o[i + 1] as usize],
-                out.yarn_closed[i],
-            )
-        })
-        .collect();
+    let points = centreline(&out);
+    let yarns = yarns(&out, &points);
     let (min, max) = (Vec2::new(0.02, 0.01), Vec2::new(0.10, 0.09));
     let mask = cover_mask(&yarns, out.yarn_radius, min, max, RESOLUTION).unwrap();
     let gaps = holes(&mask, RESOLUTION);
@@ -170,21 +181,91 @@ fn stockinette_at_the_default_yarn_interlocks_clears_and_covers() {
     assert_eq!(out.stats.free_loops, Some((0, 0)));
     let (min, _) = out.stats.clearance.unwrap();
     assert!(min >= 0.95, "clearance {min}");
-    let points: Vec<Vec3> = out
-        .centerline
-        .chunks(3)
-        .map(|c| Vec3::new(c[0], c[1], c[2]))
-        .collect();
-    let o = &out.yarn_offsets;
-    let yarns: Vec<(&[Vec3], bool)> = (0..out.yarn_closed.len())
-        .map(|i| {
-            (
-                &points[o[i] as usize..o[i + 1] as usize],
-                out.yarn_closed[i],
-            )
-        })
-        .collect();
+    let points = centreline(&out);
+    let yarns = yarns(&out, &points);
     let window = (Vec2::new(0.02, 0.02), Vec2::new(0.10, 0.08));
     let hidden = cover(&yarns, out.yarn_radius, window.0, window.1, RESOLUTION);
     assert!(hidden >= 0.88, "cover {hidden}");
+}
+
+/// A bobble is a solid knot (issue 15): seen square-on, each ball's own yarn covers the disc
+/// it stands over to its middle, with no gap closed inside it, it stands out from the
+/// fabric by more than a stitch's width, and every crossing of its turns is decided and
+/// the right way round. Measured on a 12 x 10 cm sheet of the bobbles preset
+/// at the defaults: each of the 28 balls covers all of its middle and of its disc (the disc
+/// of 0.8 of its radius round its centre, the middle 0.3) and stands 2.1 stitch widths out.
+/// The ball as drawn before, four turns closing only to half the radius, left a hole
+/// through its middle (0.2% of the middle covered, 81% of the disc), which this fails.
+#[test]
+fn a_bobble_is_a_solid_knot() {
+    let sheet = PlaneSurface {
+        width: 0.12,
+        height: 0.10,
+    };
+    let pattern = StitchPattern::preset("bobbles").unwrap();
+    let p = KnitParams {
+        threads: Some(2),
+        ..KnitParams::default()
+    };
+    let knit = PreparedKnit::new(&sheet, &pattern, &p).unwrap();
+    let out = knit.build(&sheet).unwrap();
+    let pieces = knit.uv_centrelines(&sheet).unwrap();
+    assert_eq!(pieces.len(), out.yarn_closed.len());
+    let points = centreline(&out);
+    let yarns = yarns(&out, &points);
+    let sw = out.stats.stitch_width;
+    let resolution = 200;
+    let mut balls = 0;
+    let mut least = (1.0f32, 1.0f32, f32::MAX);
+    for (i, (piece, &(ball, _))) in pieces.iter().zip(&yarns).enumerate() {
+        if !piece.bobble {
+            continue;
+        }
+        balls += 1;
+        assert_eq!(ball.len(), piece.points.len());
+        // The sheet lies in z = 0 and faces +z.
+        let centre = ball.iter().map(|p| p.truncate()).sum::<Vec2>() / ball.len() as f32;
+        let radius = bobbles::RADIUS * sw;
+        let (min, max) = (centre - Vec2::splat(radius), centre + Vec2::splat(radius));
+        let mask = cover_mask(&[(ball, false)], out.yarn_radius, min, max, resolution).unwrap();
+        let (mut disc, mut middle) = ((0, 0), (0, 0));
+        for (k, &covered) in mask.iter().enumerate() {
+            let (x, y) = ((k % resolution) as f32, (k / resolution) as f32);
+            let r = (Vec2::new(x, y) + 0.5) / resolution as f32 * 2.0 - 1.0;
+            for (within, count) in [(0.8, &mut disc), (0.3, &mut middle)] {
+                if r.length() <= within {
+                    count.0 += covered as usize;
+                    count.1 += 1;
+                }
+            }
+        }
+        let share = |(covered, all): (usize, usize)| covered as f32 / all as f32;
+        least = (
+            least.0.min(share(middle)),
+            least.1.min(share(disc)),
+            least.2,
+        );
+        assert!(share(middle) >= 0.99, "ball {i}: middle {}", share(middle));
+        assert!(share(disc) >= 0.95, "ball {i}: disc {}", share(disc));
+        let gaps = holes(&mask, resolution);
+        let closed: usize = (0..gaps.areas.len())
+            .filter(|&l| !gaps.open[l])
+            .map(|l| gaps.areas[l])
+            .sum();
+        assert_eq!(closed, 0, "ball {i}: a gap closed inside the ball");
+        let top = ball.iter().map(|p| p.z).fold(f32::MIN, f32::max);
+        least.2 = least.2.min(top / sw);
+        assert!(top > sw, "ball {i} stands {top} out");
+    }
+    println!(
+        "{balls} balls: middle covered {:.3}, disc {:.3}, standing {:.2} stitch widths out \
+         (the least of each)",
+        least.0, least.1, least.2
+    );
+    assert!(balls >= 10, "{balls} bobbles");
+    // Coiled outward, each turn over the turns before it where it crosses them, and every
+    // crossing with the fabric in front of it: no crossing left undecided.
+    let order = knit.crossing_order(&sheet).unwrap();
+    assert_eq!(order.undecided, 0, "{order:?}");
+    assert_eq!(order.agree, order.decided, "{order:?}");
 }

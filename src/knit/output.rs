@@ -119,6 +119,8 @@ pub struct UvYarn {
     /// A whole course round a cyclic-u surface: the last sample joins the first moved by
     /// `period_u` along u.
     pub closed: bool,
+    /// The ball of a bobble (see [`crate::skeleton::bobbles`]), not a course's yarn.
+    pub bobble: bool,
     /// The domain's width in u (the period of a cyclic u).
     pub period_u: f32,
 }

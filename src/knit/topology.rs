@@ -33,6 +33,7 @@ impl PreparedKnit {
                     points,
                     stitches,
                     closed: pc.closed,
+                    bobble: pc.bobble,
                     period_u: self.skeleton.lattice().tile.x * wales as f32,
                 }
             })

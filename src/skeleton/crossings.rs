@@ -29,7 +29,8 @@
 //! - the crossed legs of a twisted stitch: the leg the yarn reaches first in front;
 //! - a float past a slipped stitch and the loop it passes: the float in front when the yarn
 //!   was held in front;
-//! - a float of stranded colourwork behind the fabric, a bobble's ball in front of it.
+//! - a float of stranded colourwork behind the fabric, a bobble's ball in front of it, and
+//!   each turn of the ball over the turns before it (the ball is coiled outward).
 //!
 //! Crossings of one course with itself or with courses further away that none of these
 //! rules decide are counted as undecided.
@@ -709,6 +710,11 @@ fn expected(lattice: &Lattice, pattern: &StitchPattern, a: &Seg, b: &Seg) -> Opt
         return (a.float != b.float).then_some((Rule::Stitch, b.float));
     }
     if a.knot || b.knot {
+        if a.knot && b.knot && a.piece == b.piece {
+            // A ball's turns coil outward from its rim (`super::bobbles`): seen from the
+            // front, where one turn crosses an earlier one it lies over it.
+            return Some((Rule::Stitch, a.index > b.index));
+        }
         return (a.knot != b.knot).then_some((Rule::Stitch, a.knot));
     }
     if a.edge.is_some() || b.edge.is_some() {
