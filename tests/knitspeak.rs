@@ -1778,6 +1778,15 @@ fn british_row_numbers_and_alternate_rows_read() {
         &ks("Row 1 (RS): Knit.\nRow 2: Purl.\nRow 3: Purl.\nRow 4: Knit."),
         same_cells,
     );
+    // A full stop for the colon, as some books print rows, the side before or after it.
+    all_read_as(
+        &[
+            "Row 1. (RS) K2, *p2, k2; rep from *.\nRow 2. P2, *k2, p2; rep from *.",
+            "Row 1 (RS). K2, *p2, k2; rep from *. Row 2. P2, *k2, p2; rep from *.",
+        ],
+        &ks("Row 1 (RS): K2, *p2, k2; rep from *.\nRow 2: P2, *k2, p2; rep from *."),
+        same_cells,
+    );
     // Rows named for the part they knit.
     all_read_as(
         &[

@@ -66,9 +66,13 @@ const MAX_HEADER: usize = 80;
 /// pattern pages write it) read as the `:` other texts put there: each whose sentence (from
 /// the line's start or the last full stop) opens with a header that reads as rows, with no
 /// `:` before the dash or after it in that sentence (`Rows 1 - 4: Knit.` is a range).
+///
+/// A full stop after a header (`Row 1. K2, p2.`, `Row 2 (WS). Purl.`, as some books print
+/// rows) is its colon too, where a statement follows it; a side written after the stop
+/// (`Row 1. (RS) K2`) joins the header (`Row 1 (RS): K2`).
 pub(super) fn spaced_dashes(text: &str) -> std::borrow::Cow<'_, str> {
     const DASHES: [&str; 2] = [" - ", " \u{2013} "];
-    if !DASHES.iter().any(|d| text.contains(d)) {
+    if !DASHES.iter().any(|d| text.contains(d)) && !text.contains(". ") {
         return std::borrow::Cow::Borrowed(text);
     }
     let mut out = String::with_capacity(text.len());
@@ -96,6 +100,17 @@ pub(super) fn spaced_dashes(text: &str) -> std::borrow::Cow<'_, str> {
                 continue;
             }
         }
+        if rest.starts_with(". ") && out.len() - sentence <= MAX_HEADER {
+            if let Some((side, read)) = header_stop(&out[sentence..], &rest[1..]) {
+                if let Some(side) = side {
+                    out.push(' ');
+                    out.push_str(side);
+                }
+                out.push_str(": ");
+                at += 1 + read;
+                continue;
+            }
+        }
         let Some(ch) = rest.chars().next() else { break };
         out.push(ch);
         if matches!(ch, '.' | '\n') {
@@ -104,6 +119,48 @@ pub(super) fn spaced_dashes(text: &str) -> std::borrow::Cow<'_, str> {
         at += ch.len_utf8();
     }
     std::borrow::Cow::Owned(out)
+}
+
+/// Whether the full stop between `before` (a sentence so far) and `after` (the text after
+/// the stop) ends a row header: `before` reads as one, and a statement follows on the same
+/// line. Returns the side to add to the header (`(RS)` where `after` opens with it) and how
+/// many bytes of `after` that and the spaces before the statement take.
+fn header_stop<'a>(before: &str, after: &'a str) -> Option<(Option<&'a str>, usize)> {
+    let lower = before.trim_start().to_lowercase();
+    let is_header = |h: &str| {
+        HEADER_WORDS.iter().any(|w| lower.starts_with(w))
+            && !h.contains(':')
+            && super::headers::parse_header(h).is_ok()
+    };
+    if !is_header(before) {
+        return None;
+    }
+    let spaces = after.len() - after.trim_start_matches([' ', '\t']).len();
+    let rest = &after[spaces..];
+    // A side in brackets after the stop belongs to the header.
+    let side = rest
+        .starts_with('(')
+        .then(|| rest.find(')'))
+        .flatten()
+        .map(|close| &rest[..=close])
+        .filter(|side| side.len() <= 12 && is_header(&format!("{before} {side}")));
+    let taken = match side {
+        Some(side) => {
+            let tail = &rest[side.len()..];
+            let gap = tail.len() - tail.trim_start_matches([' ', '\t']).len();
+            spaces + side.len() + gap
+        }
+        None => spaces,
+    };
+    let statement = &after[taken..];
+    let statement = &statement[..statement.find('\n').unwrap_or(statement.len())];
+    // A statement follows: not the end of the line, and not another sentence that is a
+    // header or a note of its own (`Row 1. Row 2: ...`).
+    let opens_header = {
+        let l = statement.to_lowercase();
+        HEADER_WORDS.iter().any(|w| l.starts_with(w))
+    };
+    (!statement.trim().is_empty() && !opens_header).then_some((side, taken))
 }
 
 /// `text` with rows numbered as British patterns number them (`1st row (RS):`, `2nd and
@@ -558,6 +615,21 @@ mod tests {
             ("Rows 1 - 4: Knit.", "Rows 1 - 4: Knit."),
             ("Row 1: K2 - p2.", "Row 1: K2 - p2."),
             ("Cable rib - a classic.", "Cable rib - a classic."),
+            // A full stop after a header, with the side before or after it.
+            ("Row 1. K2, p2. Row 2. Purl.", "Row 1: K2, p2. Row 2: Purl."),
+            (
+                "Row 1. (RS) K2, p2.\nRow 2 (WS). P2, k2.",
+                "Row 1 (RS): K2, p2.\nRow 2 (WS): P2, k2.",
+            ),
+            ("Rows 3 and 4. Knit.", "Rows 3 and 4: Knit."),
+            // Sentences that end with a row's name, or a header with nothing after it.
+            ("Work as row 1. Knit.", "Work as row 1. Knit."),
+            ("Row 1. Row 2: Purl.", "Row 1. Row 2: Purl."),
+            ("Row 1.\nK2.", "Row 1.\nK2."),
+            (
+                "Rows 1-4 form the pattern. Knit.",
+                "Rows 1-4 form the pattern. Knit.",
+            ),
         ];
         for (text, read) in cases {
             assert_eq!(super::spaced_dashes(text), read, "{text}");
