@@ -1673,7 +1673,7 @@ fn repeats_marked_with_two_stars_nest() {
     // `rep from ** 2 times` says neither "in all" nor "more": refused as `*` is.
     refused(&[(
         "Row 1: *K1, **p1, k1; rep from ** 2 times, p1; rep from *.\nRow 2: Purl.",
-        "expected \"to end\", \"to last N sts\" or \"N more times\"",
+        "write \"2 times in all\" or \"2 more times\"",
     )]);
 }
 
@@ -1931,4 +1931,53 @@ fn a_run_on_instruction_is_refused_by_its_length() {
         &text,
         "runs 99999 characters without a comma or a full stop",
     )]);
+}
+
+/// A repeat's count of times: `N more times` and `N times in all` each say which count they
+/// give; a plain `N times` or `twice` is read both ways by knitters, so it is refused with
+/// both ways to write it (it was refused as "expected ... N more times").
+#[test]
+fn a_repeat_count_in_all_reads_and_a_bare_count_names_both_readings() {
+    let written = ks("Row 1 (RS): *K1, p1; rep from * 2 more times, k2.\nRow 2: Purl.");
+    all_read_as(
+        &[
+            "Row 1 (RS): *K1, p1; rep from * 3 times in all, k2.\nRow 2: Purl.",
+            "Row 1 (RS): *K1, p1; rep from * three times total, k2.\nRow 2: Purl.",
+            "Row 1 (RS): *K1, p1; rep from * a total of 3 times, k2.\nRow 2: Purl.",
+            "Row 1 (RS): *K1, p1, rep from * 2 times more, k2.\nRow 2: Purl.",
+        ],
+        &written,
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): *K1, p1; rep from * 1 more time, k2.\nRow 2: Purl."],
+        &ks("Row 1 (RS): K1, p1, k1, p1, k2.\nRow 2: Purl."),
+        same_cells,
+    );
+    refused(&[
+        (
+            "Row 1 (RS): *K1, p1; rep from * 2 times, k2.\nRow 2: Purl.",
+            "\"2 times\" is read two ways, 2 in all or 2 more after the first: write \
+             \"2 times in all\" or \"2 more times\"",
+        ),
+        (
+            "Row 1: *K1, p1; rep from * twice, k2. Row 2: Purl.",
+            "write \"2 times in all\" or \"2 more times\"",
+        ),
+        (
+            "Row 1: *K1, p1; rep from * until done. Row 2: Purl.",
+            "expected \"to end\", \"to last N sts\" or \"N more times\"",
+        ),
+        // A count past any row's width is refused before it is worked out: the largest
+        // integer's "more times" wrapped round to a repeat worked no times and read, and
+        // a count near it filled the memory.
+        (
+            "Row 1: *K1, p1; rep from * 18446744073709551615 more times, k2. Row 2: Purl.",
+            "a repeat worked 18446744073709551615 times: a pattern's row holds at most 256",
+        ),
+        (
+            "Row 1: *K1, p1; rep from * 100000 times in all, k2. Row 2: Purl.",
+            "a repeat worked 100000 times",
+        ),
+    ]);
 }

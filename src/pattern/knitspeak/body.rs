@@ -280,15 +280,51 @@ fn until(s: &str) -> Option<Until> {
             .trim_end_matches("st");
         return numbers::count(n).map(Until::Last);
     }
-    let more = s
-        .strip_suffix("more times")
-        .or_else(|| s.strip_suffix("times more"))
+    let more = ["more times", "times more", "more time", "time more"]
+        .iter()
+        .find_map(|w| s.strip_suffix(w))
         .map(numbers::count);
-    match (s, more) {
-        ("once more", _) => Some(Until::Times(2)),
-        ("twice more", _) => Some(Until::Times(3)),
-        (_, Some(Some(n))) => Some(Until::Times(n + 1)),
+    // `3 times in all`: the count of the whole, as plainly as `2 more times` says the rest.
+    let in_all = [
+        "times in all",
+        "times in total",
+        "times total",
+        "times altogether",
+    ]
+    .iter()
+    .find_map(|w| s.strip_suffix(w))
+    .or_else(|| s.strip_prefix("a total of")?.strip_suffix("times"))
+    .map(numbers::count);
+    match (s, more, in_all) {
+        ("once more", ..) => Some(Until::Times(2)),
+        ("twice more", ..) => Some(Until::Times(3)),
+        (_, Some(Some(n)), _) => Some(Until::Times(n.saturating_add(1))),
+        (_, _, Some(Some(n))) if n >= 1 => Some(Until::Times(n)),
         _ => None,
+    }
+}
+
+/// Why `rest` (what follows `rep from *`) is no repeat's end: a plain count of times
+/// (`2 times`, `twice`) is read two ways by knitters, as the times in all or the times more
+/// than the first, and the row does not say which.
+fn repeat_end_refused(rest: &str) -> String {
+    let s = rest.trim().to_lowercase();
+    let times = match s.as_str() {
+        "once" => Some(1),
+        "twice" => Some(2),
+        "thrice" => Some(3),
+        _ => s
+            .strip_suffix("times")
+            .or_else(|| s.strip_suffix("time"))
+            .and_then(numbers::count),
+    };
+    match times {
+        Some(n) if n >= 1 => format!(
+            "\"{}\" is read two ways, {n} in all or {n} more after the first: write \
+             \"{n} times in all\" or \"{n} more times\"",
+            rest.trim()
+        ),
+        _ => "expected \"to end\", \"to last N sts\" or \"N more times\"".into(),
     }
 }
 
@@ -705,12 +741,21 @@ impl BodyParser<'_> {
             } else {
                 0
             };
-            let u = until(rest.trim_start().trim_start_matches('*')).ok_or_else(|| {
-                self.err(
-                    t,
-                    "expected \"to end\", \"to last N sts\" or \"N more times\"",
-                )
-            })?;
+            let tail = rest.trim_start().trim_start_matches('*');
+            let u = until(tail).ok_or_else(|| self.err(t, &repeat_end_refused(tail)))?;
+            if let Until::Times(n) = u {
+                // No row is that wide: refused before the repeat is worked out (a count near
+                // the integer's range wrapped, or filled the memory).
+                if n > MAX_KNITSPEAK_WIDTH {
+                    return Err(self.err(
+                        t,
+                        &format!(
+                            "a repeat worked {n} times: a pattern's row holds at most \
+                             {MAX_KNITSPEAK_WIDTH} stitches"
+                        ),
+                    ));
+                }
+            }
             return self.close_repeat(t, u, stars, els);
         }
         // `Knit 1 row.` says what `Knit.` says.
