@@ -1981,3 +1981,41 @@ fn a_repeat_count_in_all_reads_and_a_bare_count_names_both_readings() {
         ),
     ]);
 }
+
+/// A cable needle's working written out inside a row, as older books print cables, reads as
+/// the cross it works; a pattern's key still defines its names, and a working that is no
+/// cross is left for the row to refuse.
+#[test]
+fn a_cable_worked_out_inside_a_row_reads_as_its_cross() {
+    all_read_as(
+        &[
+            "Row 1 (RS): P2, *slip 2 sts to cn and hold in front, k2, k2 from cn, p2; rep \
+             from *.\nRow 2: K2, *p4, k2; rep from *.",
+            "Row 1 (RS): P2, *Sl next 2 sts onto cable needle and hold at front of work, K2, \
+             then K2 from cable needle, p2; rep from *.\nRow 2: K2, *p4, k2; rep from *.",
+        ],
+        &ks("Row 1 (RS): P2, *2/2 LC, p2; rep from *.\nRow 2: K2, *p4, k2; rep from *."),
+        same_cells,
+    );
+    all_read_as(
+        &[
+            "Row 1 (RS): K1, *sl 1 to cn, hold at back, k2, p1 from cn, k1; rep from *. \
+           Row 2: Purl.",
+        ],
+        &ks("Row 1 (RS): K1, *2/1 RPC, k1; rep from *. Row 2: Purl."),
+        same_cells,
+    );
+    // The key's definition is read as a definition, and the rows read its name.
+    all_read_as(
+        &[
+            "C4B = sl 2 to cn, hold at back, k2, k2 from cn. Row 1 (RS): P2, C4B, p2. \
+           Row 2: K2, p4, k2.",
+        ],
+        &ks("Row 1 (RS): P2, 2/2 RC, p2.\nRow 2: K2, p4, k2."),
+        same_cells,
+    );
+    refused(&[(
+        "Row 1 (RS): P2, sl 2 to cn, hold in front, k2, k1 from cn, p2. Row 2: K2, p4, k2.",
+        "unknown stitch \"sl 2 to cn\"",
+    )]);
+}

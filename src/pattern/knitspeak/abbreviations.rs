@@ -22,6 +22,90 @@ pub(super) fn defined(text: &str) -> Defined {
         .collect()
 }
 
+/// `text` with each cable needle's working written out inside a row (`P2, *slip 2 sts to
+/// cn and hold in front, k2, k2 from cn, p2; rep from *`, as older books print cables) read
+/// as the cross it works (`2/2 LC`): a run of instructions from one that slips to the cable
+/// needle to the first that works from it, which [`worked_cross`] reads whole. A definition
+/// in the key (`C4F = ...`, [`definition`]) is left for [`defined`] to read; a run that is
+/// no cross (a bobble, stitches worked from the needle in two goes) is left as written,
+/// for the row's reader to refuse.
+pub(super) fn inline_crosses(text: &str) -> std::borrow::Cow<'_, str> {
+    let lower = text.to_ascii_lowercase();
+    if !lower.contains("from cn") && !lower.contains("cable needle") {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len());
+    for (k, sentence) in text.split('.').enumerate() {
+        if k > 0 {
+            out.push('.');
+        }
+        if definition(sentence).is_some() {
+            out.push_str(sentence);
+        } else {
+            out.push_str(&sentence_crosses(sentence));
+        }
+    }
+    std::borrow::Cow::Owned(out)
+}
+
+/// The longest working [`inline_crosses`] reads, in bytes.
+const MAX_WORKING: usize = 160;
+
+/// One sentence of [`inline_crosses`]: ASCII lower case keeps byte offsets, so the runs
+/// found in `lower` index `sentence` too.
+fn sentence_crosses(sentence: &str) -> String {
+    let lower = sentence.to_ascii_lowercase();
+    let ends = [
+        "from the cable needle",
+        "from cable needle",
+        "from the cn",
+        "from cn",
+    ];
+    let mut out = String::new();
+    let mut copied = 0;
+    let mut at = 0;
+    while at < lower.len() {
+        // An instruction starts after a separator; the working starts with a slip.
+        let starts = lower[..at]
+            .trim_end()
+            .chars()
+            .last()
+            .is_none_or(|c| matches!(c, ',' | ';' | '*' | '[' | '(' | ':'));
+        let rest = &lower[at..];
+        if starts
+            && (rest.starts_with("sl ")
+                || rest.starts_with("slip ")
+                || rest.starts_with("sl1")
+                || rest.starts_with("sl2")
+                || rest.starts_with("sl3")
+                || rest.starts_with("sl4"))
+        {
+            // Looked for within the longest working only: the scan stays linear.
+            let mut reach = rest.len().min(MAX_WORKING);
+            while !rest.is_char_boundary(reach) {
+                reach -= 1;
+            }
+            let end = ends
+                .iter()
+                .filter_map(|e| rest[..reach].find(e).map(|i| i + e.len()))
+                .min();
+            let span = end
+                .map(|end| &rest[..end])
+                .filter(|span| !span.contains(['*', ';', '[', ']', '(', ')']));
+            if let Some(cross) = span.and_then(worked_cross) {
+                out.push_str(&sentence[copied..at]);
+                out.push_str(&cross.name());
+                at += span.map_or(0, str::len);
+                copied = at;
+                continue;
+            }
+        }
+        at += rest.chars().next().map_or(1, char::len_utf8);
+    }
+    out.push_str(&sentence[copied..]);
+    out
+}
+
 /// Whether `line` holds nothing but cable definitions (`C3B = sl 1 to cn, hold at back, k2,
 /// k1 from cn. C3F = ...`): a line of the key, which the rows do not read.
 pub(super) fn only_definitions(line: &str) -> bool {

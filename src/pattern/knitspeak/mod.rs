@@ -148,6 +148,7 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
     let text = lexer::ordinal_rows(&text);
     let text = lexer::spaced_dashes(&text);
     let defined = abbreviations::defined(&text);
+    let text = abbreviations::inline_crosses(&text);
     let lexed = statements(&text);
     let statements = lexed.rows;
     // Only text around a pattern, one line of it a header that is no row's (`Stitch 1:`).
