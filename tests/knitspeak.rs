@@ -1779,10 +1779,14 @@ fn british_row_numbers_and_alternate_rows_read() {
         same_cells,
     );
     // A full stop for the colon, as some books print rows, the side before or after it.
+    // The sides of these rows are checked too: a (WS) on row 1 would be refused.
     all_read_as(
         &[
             "Row 1. (RS) K2, *p2, k2; rep from *.\nRow 2. P2, *k2, p2; rep from *.",
             "Row 1 (RS). K2, *p2, k2; rep from *. Row 2. P2, *k2, p2; rep from *.",
+            // The side after the colon, or without brackets.
+            "Row 1: (RS) K2, *p2, k2; rep from *.\nRow 2: (WS) P2, *k2, p2; rep from *.",
+            "Row 1 RS: K2, *p2, k2; rep from *.\nRow 2 WS: P2, *k2, p2; rep from *.",
         ],
         &ks("Row 1 (RS): K2, *p2, k2; rep from *.\nRow 2: P2, *k2, p2; rep from *."),
         same_cells,
@@ -2018,4 +2022,36 @@ fn a_cable_worked_out_inside_a_row_reads_as_its_cross() {
         "Row 1 (RS): P2, sl 2 to cn, hold in front, k2, k1 from cn, p2. Row 2: K2, p4, k2.",
         "unknown stitch \"sl 2 to cn\"",
     )]);
+}
+
+/// Stitches written without the commas between them, as quick notes write rib (`*k2 p2;
+/// rep from *`), read as if the commas were there; words that belong to one stitch (`k2
+/// tog`, `k1 tbl`) are never split apart, and a run of bare `k p` is no count at all.
+#[test]
+fn stitches_written_without_commas_read_as_written_with_them() {
+    all_read_as(
+        &[
+            "Row 1 (RS): *k2 p2; rep from *.\nRow 2: *k2 p2; rep from *.",
+            "Row 1 (RS): *K2 P2; rep from *.\nRow 2: *k2, p2; rep from *.",
+        ],
+        &ks("Row 1 (RS): *k2, p2; rep from *.\nRow 2: *k2, p2; rep from *."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): k1, *yo k2tog; rep from * to last st, k1. Row 2: Purl."],
+        &ks("Row 1 (RS): k1, *yo, k2tog; rep from * to last st, k1. Row 2: Purl."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): *k2 tog, yo; rep from *. Row 2: Purl."],
+        &ks("Row 1 (RS): *k2tog, yo; rep from *. Row 2: Purl."),
+        same_cells,
+    );
+    refused(&[
+        ("Row 1: k p. Row 2: p k.", "unknown stitch \"k p\""),
+        (
+            "Row 1: k2 tbl p2. Row 2: p4.",
+            "unknown stitch \"k2 tbl p2\"",
+        ),
+    ]);
 }

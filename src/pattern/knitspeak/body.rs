@@ -806,6 +806,15 @@ impl BodyParser<'_> {
             .find(|(name, _)| *name == own)
             .map(|&(_, ins)| (Stitched::plain(ins), 1));
         let Some((s, count)) = own.or_else(|| parse_stitch(&phrase)) else {
+            if n == 1 {
+                if let Some(stitches) = without_commas(&phrase) {
+                    if stitches.len() + els.len() > 16 * MAX_KNITSPEAK_WIDTH {
+                        return Err(self.err(t, "far too many stitches"));
+                    }
+                    els.extend(stitches.into_iter().map(El::Stitch));
+                    return Ok(());
+                }
+            }
             return Err(unknown(self.what, self.instruction, t));
         };
         if bare && !in_brackets {
@@ -819,6 +828,28 @@ impl BodyParser<'_> {
         els.extend(std::iter::repeat_n(El::Stitch(s), total));
         Ok(())
     }
+}
+
+/// `k2 p2`, `yo k2tog`: stitches written one after another without the commas between
+/// them, as quick notes write rib. Each word must be a stitch with its count written (`k2`,
+/// not `k`, whose run would fill the row) or one that works a set count (`yo`, `ssk`); a
+/// word that is no stitch (`tbl`, `tog`, `below`, a number) reads nothing, so a stitch's
+/// own words are never split apart. `None` for one word, or where any word is none.
+fn without_commas(phrase: &str) -> Option<Vec<Stitched>> {
+    let words: Vec<&str> = phrase.split_whitespace().collect();
+    if words.len() < 2 {
+        return None;
+    }
+    let mut out = Vec::new();
+    for word in words {
+        let (s, count) = parse_stitch(word)?;
+        let counted = word.bytes().any(|b| b.is_ascii_digit());
+        if !counted && is_knit_or_purl_name(word) {
+            return None;
+        }
+        out.extend(std::iter::repeat_n(s, count.min(MAX_KNITSPEAK_WIDTH + 1)));
+    }
+    Some(out)
 }
 
 /// `yf`, `yarn to front` -> (front, also a yarn-over's spelling); `yb`, `yarn to back` ->

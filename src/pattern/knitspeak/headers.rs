@@ -67,12 +67,21 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
     let h = strip_any(&h, &["rib ", "patt ", "pattern "])
         .filter(|r| ["row", "rnd", "round"].iter().any(|w| r.starts_with(w)))
         .map_or_else(|| h.clone(), str::to_string);
+    // `Row 1 RS`: a side written without brackets, as the header's last word.
+    let bare_side = h
+        .rsplit_once(' ')
+        .and_then(|(_, last)| match last {
+            "rs" => Some(true),
+            "ws" => Some(false),
+            _ => None,
+        })
+        .filter(|_| !h.starts_with("all ") && !h.starts_with("every "));
     let side = if h.contains("(rs)") || h.contains("right side") {
         Some(true)
     } else if h.contains("(ws)") || h.contains("wrong side") {
         Some(false)
     } else {
-        None
+        bare_side
     };
     let first = h
         .split_once(" and ")
@@ -130,6 +139,10 @@ pub(super) fn parse_header(header: &str) -> Result<Header> {
         return Err(bad_header(header));
     };
     // `Rows 1 (RS) and 3`: what is in brackets says the side, not which rows.
+    let words = match bare_side {
+        Some(_) => words.trim_end()[..words.trim_end().len() - 2].trim_end(),
+        None => words,
+    };
     let mut words = words.to_string();
     while let Some(open) = words.find(['(', '[']) {
         let close = words[open..]

@@ -68,11 +68,11 @@ const MAX_HEADER: usize = 80;
 /// `:` before the dash or after it in that sentence (`Rows 1 - 4: Knit.` is a range).
 ///
 /// A full stop after a header (`Row 1. K2, p2.`, `Row 2 (WS). Purl.`, as some books print
-/// rows) is its colon too, where a statement follows it; a side written after the stop
-/// (`Row 1. (RS) K2`) joins the header (`Row 1 (RS): K2`).
+/// rows) is its colon too, where a statement follows it; a side written after the stop or
+/// the colon (`Row 1. (RS) K2`, `Row 1: (RS) K2`) joins the header (`Row 1 (RS): K2`).
 pub(super) fn spaced_dashes(text: &str) -> std::borrow::Cow<'_, str> {
     const DASHES: [&str; 2] = [" - ", " \u{2013} "];
-    if !DASHES.iter().any(|d| text.contains(d)) && !text.contains(". ") {
+    if !DASHES.iter().any(|d| text.contains(d)) && !text.contains(". ") && !text.contains(": (") {
         return std::borrow::Cow::Borrowed(text);
     }
     let mut out = String::with_capacity(text.len());
@@ -97,6 +97,16 @@ pub(super) fn spaced_dashes(text: &str) -> std::borrow::Cow<'_, str> {
             if header && !colon_after() {
                 out.push_str(": ");
                 at += dash.len();
+                continue;
+            }
+        }
+        // `Row 1: (RS) K2`: a side written after the colon joins the header.
+        if rest.starts_with(": (") && out.len() - sentence <= MAX_HEADER {
+            if let Some((Some(side), read)) = header_stop(&out[sentence..], &rest[1..]) {
+                out.push(' ');
+                out.push_str(side);
+                out.push_str(": ");
+                at += 1 + read;
                 continue;
             }
         }
@@ -137,13 +147,17 @@ fn header_stop<'a>(before: &str, after: &'a str) -> Option<(Option<&'a str>, usi
     }
     let spaces = after.len() - after.trim_start_matches([' ', '\t']).len();
     let rest = &after[spaces..];
-    // A side in brackets after the stop belongs to the header.
+    // A side in brackets after the stop (or the colon) belongs to the header.
     let side = rest
         .starts_with('(')
         .then(|| rest.find(')'))
         .flatten()
         .map(|close| &rest[..=close])
-        .filter(|side| side.len() <= 12 && is_header(&format!("{before} {side}")));
+        .filter(|side| {
+            let inner = side[1..side.len() - 1].trim().to_ascii_lowercase();
+            ["rs", "ws", "right side", "wrong side", "rs row", "ws row"].contains(&inner.as_str())
+                && is_header(&format!("{before} {side}"))
+        });
     let taken = match side {
         Some(side) => {
             let tail = &rest[side.len()..];
@@ -622,6 +636,12 @@ mod tests {
                 "Row 1 (RS): K2, p2.\nRow 2 (WS): P2, k2.",
             ),
             ("Rows 3 and 4. Knit.", "Rows 3 and 4: Knit."),
+            (
+                "Row 1: (RS) K2. Row 2: (WS) P2.",
+                "Row 1 (RS): K2. Row 2 (WS): P2.",
+            ),
+            // Brackets after a colon that are no side stay in the body.
+            ("Row 1: (K1, p1) to end.", "Row 1: (K1, p1) to end."),
             // Sentences that end with a row's name, or a header with nothing after it.
             ("Work as row 1. Knit.", "Work as row 1. Knit."),
             ("Row 1. Row 2: Purl.", "Row 1. Row 2: Purl."),
