@@ -2055,3 +2055,31 @@ fn stitches_written_without_commas_read_as_written_with_them() {
         ),
     ]);
 }
+
+/// A repeat closed by a second `*` with how far it goes straight after (`*k2, p2* across`,
+/// `K1, *p1, k1* to end`), and a bracket's count written `x 3` as British patterns write
+/// it, read as their standard spellings.
+#[test]
+fn a_closing_star_with_its_extent_and_a_bracket_times_x_read() {
+    all_read_as(
+        &[
+            "Row 1 (RS): *K2, P2* across.\nRow 2: *K2, P2* to end.",
+            "Row 1 (RS): *K2, P2*; rep to end.\nRow 2: *K2, P2* all around.",
+        ],
+        &ks("Row 1 (RS): *K2, p2; rep from * to end.\nRow 2: *K2, p2; rep from * to end."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): K1, *p1, k1* to last st, k1.\nRow 2: Purl."],
+        &ks("Row 1 (RS): K1, *p1, k1; rep from * to last st, k1.\nRow 2: Purl."),
+        same_cells,
+    );
+    all_read_as(
+        &[
+            "Row 1 (RS): (K2, P2) x 3, k2.\nRow 2: P2, [k2, p2] x3.",
+            "Row 1 (RS): (K2, P2) \u{d7} 3, k2.\nRow 2: P2, [k2, p2] 3x.",
+        ],
+        &ks("Row 1 (RS): [K2, p2] 3 times, k2.\nRow 2: P2, [k2, p2] 3 times."),
+        same_cells,
+    );
+}

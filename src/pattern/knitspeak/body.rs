@@ -142,9 +142,12 @@ fn times(s: &str) -> Option<usize> {
         "thrice" => return Some(3),
         _ => {}
     }
+    // `3 times`, `3x`; `x 3`, `x3`, `\u{d7} 3` as British patterns write it.
     let n = s
         .strip_suffix("times")
-        .or_else(|| s.strip_suffix("x"))?
+        .or_else(|| s.strip_suffix("x"))
+        .or_else(|| s.strip_prefix('x'))
+        .or_else(|| s.strip_prefix('\u{d7}'))?
         .trim();
     numbers::count(n).filter(|&n| n >= 1)
 }

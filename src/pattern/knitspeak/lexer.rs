@@ -59,6 +59,18 @@ pub(super) fn walker_dashes(text: &str) -> std::borrow::Cow<'_, str> {
     std::borrow::Cow::Owned(out)
 }
 
+/// How far a repeat goes, written straight after the `*` that closes it (`*k2, p2* across`).
+const REPEAT_ENDS: [&str; 8] = [
+    "across",
+    "to end",
+    "to the end",
+    "to last",
+    "to the last",
+    "around",
+    "all around",
+    "until",
+];
+
 /// The longest header a spaced dash may follow, in bytes.
 const MAX_HEADER: usize = 80;
 
@@ -588,6 +600,17 @@ pub(super) fn tokens(body: &str) -> Vec<Tok> {
             {
                 flush(&mut text, &mut out);
                 out.push(Tok::Sep);
+            }
+            // `*k2, p2* across`, `K1, *p1, k1* to end`: the closing `*` and how far the repeat
+            // goes, with no `rep` between them, read as `rep from * across`.
+            '*' if out.iter().any(|t| matches!(t, Tok::Star(_))) && {
+                let after = body[at + 1..].trim_start_matches(' ').to_lowercase();
+                REPEAT_ENDS.iter().any(|w| after.starts_with(w))
+            } =>
+            {
+                flush(&mut text, &mut out);
+                out.push(Tok::Sep);
+                text.push_str("rep from * ");
             }
             '*' => {
                 let doubled = text.is_empty() && body[..at].ends_with('*');
