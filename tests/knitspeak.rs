@@ -2083,3 +2083,22 @@ fn a_closing_star_with_its_extent_and_a_bracket_times_x_read() {
         same_cells,
     );
 }
+
+/// Rows written as garment patterns write a run of them, `Next row:` after `Next row:`,
+/// read as numbered rows from 1, or from the row after the last one a header names.
+#[test]
+fn next_rows_read_as_the_rows_after_those_before_them() {
+    let rib = ks(
+        "Row 1 (RS): *K2, p2; rep from *.\nRow 2: *K2, p2; rep from *.\n\
+                  Row 3: Knit.\nRow 4: Purl.",
+    );
+    all_read_as(
+        &[
+            "Cast on a multiple of 4 sts. Next row (RS): *K2, p2; rep from *. Next row: \
+             *K2, p2; rep from *. Next row: Knit. Next row: Purl.",
+            "Rows 1 and 2: *K2, p2; rep from *.\nNext row: Knit.\nNext row: Purl.",
+        ],
+        &rib,
+        same_cells,
+    );
+}

@@ -189,6 +189,64 @@ fn header_stop<'a>(before: &str, after: &'a str) -> Option<(Option<&'a str>, usi
     (!statement.trim().is_empty() && !opens_header).then_some((side, taken))
 }
 
+/// `text` with each `Next row:` (`Next row (RS):`, `Next rnd:`), as garment patterns write a
+/// run of rows, numbered as the row after the last one named before it (`Row 1 (RS):`;
+/// after `Rows 1-4:` it is `Row 5:`), and the first as row 1. Only a header that opens a
+/// statement (at a line's start or after a full stop) and ends at its `:` is numbered.
+pub(super) fn next_rows(text: &str) -> std::borrow::Cow<'_, str> {
+    // ASCII lower case keeps byte offsets, so they index `text` too.
+    let lower = text.to_ascii_lowercase();
+    if !lower.contains("next r") {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 16);
+    let mut last = 0usize;
+    let mut copied = 0;
+    let mut start = true;
+    for (at, ch) in lower.char_indices() {
+        if matches!(ch, '.' | '\n') {
+            start = true;
+            continue;
+        }
+        if !start || ch.is_whitespace() {
+            continue;
+        }
+        start = false;
+        let rest = &lower[at..];
+        let line = &rest[..rest.find(['\n', '.']).unwrap_or(rest.len())];
+        let Some(colon) = line.find(':').filter(|&c| c <= MAX_HEADER) else {
+            continue;
+        };
+        let header = &line[..colon];
+        let next = ["next row", "next rnd", "next round"]
+            .iter()
+            .find(|w| header.starts_with(**w));
+        if let Some(word) = next {
+            let side = header[word.len()..].trim();
+            let is_side = side.is_empty() || (side.starts_with('(') && side.ends_with(')'));
+            if is_side && last < crate::pattern::MAX_PATTERN_ROWS {
+                last += 1;
+                let name = if *word == "next row" { "Row" } else { "Rnd" };
+                out.push_str(&text[copied..at]);
+                out.push_str(&format!("{name} {last}"));
+                copied = at + word.len();
+            }
+        } else if HEADER_WORDS.iter().any(|w| header.starts_with(w)) {
+            if let Some(numbers) = super::headers::parse_header(&text[at..at + colon])
+                .ok()
+                .and_then(|h| h.numbers())
+            {
+                last = last.max(numbers.into_iter().max().unwrap_or(0));
+            }
+        }
+    }
+    if copied == 0 {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    out.push_str(&text[copied..]);
+    std::borrow::Cow::Owned(out)
+}
+
 /// `text` with rows numbered as British patterns number them (`1st row (RS):`, `2nd and
 /// every alt row:`, `5th to 8th rows:`, `1st rnd:`, `Work as 3rd row.`) written as Knitspeak
 /// numbers them (`Row 1 (RS):`, `Row 2 and every alt row:`, `Rows 5-8:`, `Rnd 1:`, `Work as
@@ -676,6 +734,26 @@ mod tests {
         ];
         for (text, read) in cases {
             assert_eq!(super::spaced_dashes(text), read, "{text}");
+        }
+    }
+
+    #[test]
+    fn next_rows_are_numbered_after_the_rows_before_them() {
+        let cases = [
+            (
+                "Next row (RS): K2. Next row: P2.",
+                "Row 1 (RS): K2. Row 2: P2.",
+            ),
+            (
+                "Rows 1-4: Knit.\nNext row: Purl.\nNext rnd: Knit.",
+                "Rows 1-4: Knit.\nRow 5: Purl.\nRnd 6: Knit.",
+            ),
+            // Not a header that opens a statement: left as written.
+            ("Knit the next row: k2.", "Knit the next row: k2."),
+            ("Next row is plain. Knit.", "Next row is plain. Knit."),
+        ];
+        for (text, read) in cases {
+            assert_eq!(super::next_rows(text), read, "{text}");
         }
     }
 

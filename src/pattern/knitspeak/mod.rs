@@ -147,6 +147,7 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
     let text = lexer::walker_dashes(text);
     let text = lexer::ordinal_rows(&text);
     let text = lexer::spaced_dashes(&text);
+    let text = lexer::next_rows(&text);
     let defined = abbreviations::defined(&text);
     let text = abbreviations::inline_crosses(&text);
     let lexed = statements(&text);
@@ -311,7 +312,9 @@ fn setup_plans<'a>(
 /// Whether `text` looks like Knitspeak rather than a symbol chart: some line opens with a row
 /// header (`Row 1 (RS):`), whatever title, notes or cast-on come before it.
 pub fn looks_like_knitspeak(text: &str) -> bool {
-    lexer::spaced_dashes(&lexer::ordinal_rows(&lexer::walker_dashes(text)))
-        .lines()
-        .any(|line| lexer::first_row_statement(line).is_some())
+    lexer::next_rows(&lexer::spaced_dashes(&lexer::ordinal_rows(
+        &lexer::walker_dashes(text),
+    )))
+    .lines()
+    .any(|line| lexer::first_row_statement(line).is_some())
 }
