@@ -2102,3 +2102,27 @@ fn next_rows_read_as_the_rows_after_those_before_them() {
         same_cells,
     );
 }
+
+/// `K2, p2, rep to end`: a `rep` that names no `*`, after stitches only, repeats the row so
+/// far, as `K2, p2 to end` reads; a `rep from *` whose `*` is missing stays refused.
+#[test]
+fn a_rep_that_names_no_star_repeats_the_row_so_far() {
+    all_read_as(
+        &[
+            "Row 1 (RS): K2, p2, rep to end.\nRow 2: K2, p2, rep to end.",
+            "Row 1 (RS): K2, p2, repeat across.\nRow 2: K2, p2 to end.",
+        ],
+        &ks("Row 1 (RS): *K2, p2; rep from * to end.\nRow 2: *K2, p2; rep from * to end."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): K2, p2, rep to last 2 sts, k2.\nRow 2: P2, k2, rep to last 2 sts, p2."],
+        &ks("Row 1 (RS): *K2, p2; rep from * to last 2 sts, k2.\n\
+             Row 2: *P2, k2; rep from * to last 2 sts, p2."),
+        same_cells,
+    );
+    refused(&[(
+        "Row 1: P1, k1 tbl; rep from * to end.\nRow 2: K1, p1.",
+        "a repeat with no '*' before it",
+    )]);
+}

@@ -622,7 +622,16 @@ impl BodyParser<'_> {
             .find(|&&(_, s)| stars == 0 || s == stars || (stars == 1 && s == 0))
             .or(open.last());
         let Some(&(at, _)) = matching else {
-            // Left for the body to report (a repeat with no '*' before it).
+            // `K2, p2, rep to end`: a `rep` that names no `*`, after stitches only, repeats the
+            // row so far, as `K2, p2 to end` does. A `rep from *` with no `*` before it is
+            // left for the body to report: where its star was lost is a guess.
+            let row_so_far = stars == 0
+                && !matches!(u, Until::Times(_))
+                && !els.is_empty()
+                && els.iter().all(|el| matches!(el, El::Stitch(_)));
+            if row_so_far {
+                els.insert(0, El::RepStart(1, 0));
+            }
             els.push(El::RepEnd(u, self.instruction));
             return Ok(());
         };
