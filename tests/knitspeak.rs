@@ -1930,7 +1930,7 @@ fn a_second_repeat_works_what_the_first_left() {
 /// length, not read at every space of it.
 #[test]
 fn a_run_on_instruction_is_refused_by_its_length() {
-    let text = format!("Row 1: {}\nRow 2: Purl.", "k1 - ".repeat(20_000).trim_end());
+    let text = format!("Row 1: {}\nRow 2: Purl.", "k1 + ".repeat(20_000).trim_end());
     refused(&[(
         &text,
         "runs 99999 characters without a comma or a full stop",
@@ -2125,4 +2125,44 @@ fn a_rep_that_names_no_star_repeats_the_row_so_far() {
         "Row 1: P1, k1 tbl; rep from * to end.\nRow 2: K1, p1.",
         "a repeat with no '*' before it",
     )]);
+}
+
+/// `k2, p2 - repeat to end`: a dash between spaces, or a long dash, parts instructions as a
+/// comma does; `Slip, slip, knit` (and `slip, slip, purl`), spelled out as some books print
+/// ssk, reads as the decrease. `sl1, sl1, k1`, which may be two slips and a knit, is left as
+/// written, and a hyphen inside a name is no dash.
+#[test]
+fn dashes_between_instructions_and_spelled_out_decreases_read() {
+    all_read_as(
+        &[
+            "Row 1 (RS): k2, p2 - repeat to end.\nRow 2: k2, p2 \u{2013} rep to end.",
+            "Row 1 (RS): *K2 - p2; rep from *.\nRow 2: K2, p2\u{2014}rep to end.",
+        ],
+        &ks("Row 1 (RS): *K2, p2; rep from * to end.\nRow 2: *K2, p2; rep from * to end."),
+        same_cells,
+    );
+    all_read_as(
+        &[
+            "Row 1 (RS): *Slip, slip, knit, yarn over; rep from *.\nRow 2: Purl.",
+            "Row 1 (RS): *SLIP,SLIP , KNIT, yo; rep from *.\nRow 2: Purl.",
+        ],
+        &ks("Row 1 (RS): *ssk, yo; rep from *.\nRow 2: Purl."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): *slip, slip, knit, yo; rep from *.\nRow 2: *Slip, slip, purl, yo; rep from *."],
+        &ks("Row 1 (RS): *ssk, yo; rep from *.\nRow 2: *ssp, yo; rep from *."),
+        same_cells,
+    );
+    // Counted slips are slips, not the decrease.
+    let slips = ks("Row 1 (RS): *sl1, sl1, k1; rep from *.\nRow 2: Purl.");
+    assert_eq!(slips.width(), 3);
+    // `knit 2 together` after two slips is no ssk: the row is read word by word.
+    let k2tog = ks("Row 1: *slip, slip, knit 2 together, yo; rep from *.\nRow 2: Purl.");
+    assert_eq!(k2tog.width(), 4);
+    all_read_as(
+        &["Row 1 (RS): *k2tog-tbl, yo; rep from *.\nRow 2: Purl."],
+        &ks("Row 1 (RS): *k2tog tbl, yo; rep from *.\nRow 2: Purl."),
+        same_cells,
+    );
 }

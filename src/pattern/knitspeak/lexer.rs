@@ -621,8 +621,66 @@ pub(super) enum Tok {
     Text(String),
 }
 
+/// `body` with each decrease spelled out as its working (`Slip, slip, knit`, as some books
+/// and pattern pages write ssk, and `slip, slip, purl`) written as its name. Only the bare
+/// words count: `sl1, sl1, k1` may be two slipped stitches and a knit, and is left as
+/// written.
+fn spelled_decreases(body: &str) -> std::borrow::Cow<'_, str> {
+    // ASCII lower case keeps byte offsets, so they index `body` too.
+    let lower = body.to_ascii_lowercase();
+    if !lower.contains("slip") {
+        return std::borrow::Cow::Borrowed(body);
+    }
+    // The words after the first `slip`: `, slip, knit` with any spaces.
+    let rest_of = |s: &str| -> Option<(usize, &'static str)> {
+        let mut at = 0;
+        for word in [",", "slip", ","] {
+            let t = s[at..].trim_start();
+            at = s.len() - t.len() + word.len();
+            t.starts_with(word).then_some(())?;
+        }
+        let t = s[at..].trim_start();
+        at = s.len() - t.len();
+        let (word, name) = [("knit", "ssk"), ("purl", "ssp")]
+            .into_iter()
+            .find(|(w, _)| t.starts_with(w))?;
+        at += word.len();
+        // The word ends the instruction: `knit 2 together` or `knitwise` is something else.
+        let after = s[at..].trim_start();
+        (after.is_empty() || after.starts_with([',', ';', '.', '*', ')', ']']))
+            .then_some((at, name))
+    };
+    let mut out = String::with_capacity(body.len());
+    let mut copied = 0;
+    let mut from = 0;
+    while let Some(found) = lower[from..].find("slip") {
+        let at = from + found;
+        let starts = lower[..at]
+            .trim_end()
+            .chars()
+            .last()
+            .is_none_or(|c| matches!(c, ',' | ';' | '*' | '[' | '(' | ':'));
+        let after_slip = at + "slip".len();
+        match rest_of(&lower[after_slip..]).filter(|_| starts) {
+            Some((len, name)) => {
+                out.push_str(&body[copied..at]);
+                out.push_str(name);
+                copied = after_slip + len;
+                from = copied;
+            }
+            None => from = after_slip,
+        }
+    }
+    if copied == 0 {
+        return std::borrow::Cow::Borrowed(body);
+    }
+    out.push_str(&body[copied..]);
+    std::borrow::Cow::Owned(out)
+}
+
 /// A row body's tokens, in order.
 pub(super) fn tokens(body: &str) -> Vec<Tok> {
+    let body = &*spelled_decreases(body);
     let mut out = Vec::new();
     let mut text = String::new();
     let flush = |text: &mut String, out: &mut Vec<Tok>| {
@@ -678,6 +736,17 @@ pub(super) fn tokens(body: &str) -> Vec<Tok> {
                     Some(Tok::Star(_)) => {}
                     _ => out.push(Tok::Star(1)),
                 }
+            }
+            // `k2, p2 - repeat to end`, `k2, p2 \u{2013} rep to end`: a dash between
+            // spaces (or any long dash) parts instructions as a comma does; a hyphen inside
+            // a name (`k2tog-tbl`, `1-to-3-inc`) has no spaces round it.
+            '\u{2013}' | '\u{2014}' => {
+                flush(&mut text, &mut out);
+                out.push(Tok::Sep);
+            }
+            '-' if body[..at].ends_with([' ', '\t']) && body[at + 1..].starts_with([' ', '\t']) => {
+                flush(&mut text, &mut out);
+                out.push(Tok::Sep);
             }
             '[' | '(' => {
                 flush(&mut text, &mut out);
