@@ -259,11 +259,15 @@ def detail_settings(
     context: bpy.types.Context,
     settings: Mapping[str, Any],
     origin: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    pose: Callable[[bpy.types.Depsgraph], sampling.Sampled] | None = None,
 ) -> dict[str, Any]:
     """The core's camera-driven detail keywords for ``settings``: empty unless Detail is
     Auto and the scene has a (perspective or orthographic) camera. An animated camera or
     source is followed over the scene's frame range (the frame is restored after).
-    ``origin`` is the sampled source's (`sampling.Sampled.origin`)."""
+    ``origin`` is the sampled source's (`sampling.Sampled.origin`). ``pose`` samples the
+    source as a depsgraph evaluates it, as the knit samples it: where the source animates,
+    each frame's view then sees the source in that frame's pose, so a part that moves into
+    the frame, or up to the camera, is built for the frame that sees it best."""
     scene = context.scene
     camera = scene.camera
     if settings["detail_mode"] != "AUTO" or camera is None or camera.type != "CAMERA":
@@ -274,13 +278,21 @@ def detail_settings(
     source_animates = animation.animates(source, context)
     frame, subframe = scene.frame_current, scene.frame_subframe
     frames = _camera_frames(scene, source_animates)
+    posed = pose is not None and source_animates and len(frames) > 1
     views = []
+    poses = []
     try:
         for f in frames:
             if f != scene.frame_current or len(frames) > 1:
                 scene.frame_set(f)
             depsgraph = context.evaluated_depsgraph_get()
-            views.append(_camera_view(scene, source, depsgraph, origin))
+            if posed:
+                assert pose is not None
+                sampled = pose(depsgraph)
+                poses.append(sampled.surface)
+                views.append(_camera_view(scene, source, depsgraph, sampled.origin))
+            else:
+                views.append(_camera_view(scene, source, depsgraph, origin))
     finally:
         if (scene.frame_current, scene.frame_subframe) != (frame, subframe):
             scene.frame_set(frame, subframe=subframe)
@@ -290,7 +302,10 @@ def detail_settings(
         max(1, r.resolution_y * r.resolution_percentage // 100),
     )
     camera_views = knitwear.Camera(
-        np.stack([v[0] for v in views]), np.stack([v[1] for v in views]), resolution
+        np.stack([v[0] for v in views]),
+        np.stack([v[1] for v in views]),
+        resolution,
+        poses=poses if posed else None,
     )
     cull_back = bool(settings["cull_back_faces"]) and _is_closed(
         source, context.evaluated_depsgraph_get()
@@ -383,7 +398,16 @@ def _core_steps_sized(
         inputs.kwargs,
         inputs.min_samples,
     )
-    detail = detail_settings(source, context, settings, sampled.origin)
+    def pose(depsgraph: bpy.types.Depsgraph) -> sampling.Sampled:
+        return sampling.sample_object(
+            source,
+            context,
+            direction=settings["direction"],
+            min_samples=min_samples,
+            depsgraph=depsgraph,
+        )
+
+    detail = detail_settings(source, context, settings, sampled.origin, pose)
     sampling_seconds = time.perf_counter() - t_sampling
 
     def prepare() -> tuple[Any, float]:

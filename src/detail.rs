@@ -24,6 +24,8 @@
 //! side of a level change sharing the sample at the stitch boundary. The centreline is the
 //! same spline at every level.
 
+use std::sync::Arc;
+
 use glam::{Mat4, Vec2, Vec3, Vec4, Vec4Swizzles};
 use rayon::prelude::*;
 
@@ -83,6 +85,48 @@ pub struct CameraView {
     pub eye: Vec4,
 }
 
+/// The surface as each camera view sees it, one per view: a deforming source's pose at the
+/// frame of that view (an armature, a shape key, a modifier that animates). Empty: every view
+/// sees the knit's own surface. Each pose has the knit's (u,v) layout (the same domain and
+/// cyclic directions); its stitches are measured, framed and faced in that pose, so a part of
+/// the surface that moves into the frame, or up to the camera, during an animation is built
+/// as finely as the frame that sees it best needs.
+#[derive(Clone, Default)]
+pub struct ViewPoses(pub Vec<Arc<dyn Surface>>);
+
+impl ViewPoses {
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// The pose view `i` sees, or `None` where views see the knit's own surface.
+    pub fn of_view(&self, i: usize) -> Option<&dyn Surface> {
+        self.0.get(i).map(|s| &**s)
+    }
+}
+
+impl std::fmt::Debug for ViewPoses {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "ViewPoses({} surfaces)", self.0.len())
+    }
+}
+
+impl PartialEq for ViewPoses {
+    /// The same surfaces, by identity (a surface is immutable once made).
+    fn eq(&self, other: &Self) -> bool {
+        self.0.len() == other.0.len()
+            && self
+                .0
+                .iter()
+                .zip(&other.0)
+                .all(|(a, b)| std::ptr::addr_eq(Arc::as_ptr(a), Arc::as_ptr(b)))
+    }
+}
+
 /// Ring segments, samples per loop and fluff of a coarser level.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LevelQuality {
@@ -101,6 +145,9 @@ pub struct DetailParams {
     /// The views to model for, at least one (an animated camera: one per frame, or a sample
     /// of its frames).
     pub views: Vec<CameraView>,
+    /// The surface in each view's pose ([`ViewPoses`]); empty: the knit's own, for every
+    /// view.
+    pub poses: ViewPoses,
     /// Render resolution, pixels (width, height).
     pub resolution: (u32, u32),
     /// Stitches at least this many pixels across are built at full quality. Default: 12.
@@ -150,6 +197,7 @@ impl Default for DetailParams {
         use crate::settings as s;
         Self {
             views: Vec::new(),
+            poses: ViewPoses::default(),
             resolution: (1920, 1080),
             full_px: s::DETAIL_FULL_PX.default_f32(),
             mid_px: s::DETAIL_MID_PX.default_f32(),
@@ -308,6 +356,20 @@ impl DetailParams {
                 )));
             }
         }
+        if !self.poses.is_empty() && self.poses.len() != self.views.len() {
+            return Err(KnitError::Parameter(format!(
+                "a camera with poses needs one pose per view: {} views, {} poses",
+                self.views.len(),
+                self.poses.len()
+            )));
+        }
+        if !self.poses.is_empty() && self.cull_hidden {
+            return Err(KnitError::Parameter(
+                "culling hidden yarn finds what hides what in the knit's own pose, not in the \
+                 camera's poses: knit a source that deforms without cull_hidden"
+                    .into(),
+            ));
+        }
         let (w, h) = self.resolution;
         if !(1..=65536).contains(&w) || !(1..=65536).contains(&h) {
             return Err(KnitError::Parameter(format!(
@@ -452,6 +514,22 @@ pub fn stitch_levels(
             .map(|(&l, &b)| if b { l } else { Level::Culled })
             .collect());
     }
+    for (i, pose) in detail.poses.0.iter().enumerate() {
+        let same = pose.domain() == surface.domain()
+            && pose.cyclic_u() == surface.cyclic_u()
+            && pose.cyclic_v() == surface.cyclic_v();
+        if !same {
+            let d = pose.domain();
+            return Err(KnitError::Parameter(format!(
+                "camera view {i}'s pose has another (u,v) layout than the knit's surface (UVs \
+                 {:?}..{:?}, cyclic {}/{}): a pose is the same surface deformed",
+                d.min.to_array(),
+                d.max.to_array(),
+                pose.cyclic_u(),
+                pose.cyclic_v()
+            )));
+        }
+    }
     let wales = lattice.wales;
     let res = Vec2::new(detail.resolution.0 as f32, detail.resolution.1 as f32);
     let mut levels = vec![Level::Culled; built.len()];
@@ -479,6 +557,42 @@ impl TryFrom<u8> for Level {
     }
 }
 
+/// A stitch on one pose of the surface: its centre and normal there, the tile's width and
+/// height vectors, and the radius of a sphere that holds its yarn.
+struct StitchPlace {
+    p: Vec3,
+    n: Vec3,
+    across: Vec3,
+    up: Vec3,
+    radius: f32,
+}
+
+impl StitchPlace {
+    fn on(
+        surface: &dyn Surface,
+        lattice: &Lattice,
+        course: usize,
+        wale: usize,
+        reach: f32,
+    ) -> Self {
+        let t = lattice.tile(course, wale);
+        let at = |uv: Vec2| surface.eval_nearest(uv);
+        let centre = at(lattice.tile_center(course, wale));
+        let across = at(0.5 * (t.n1 + t.n2)).position - at(0.5 * (t.n0 + t.n3)).position;
+        let up = at(0.5 * (t.n0 + t.n1)).position - at(0.5 * (t.n2 + t.n3)).position;
+        // The tile's corners are within half its diagonal of the centre; the yarn stands off
+        // by at most `reach`; loops reach a third of a row beyond the tile.
+        let radius = 0.75 * (across.length() + up.length()) + reach;
+        Self {
+            p: centre.position,
+            n: centre.normal,
+            across,
+            up,
+            radius,
+        }
+    }
+}
+
 fn stitch_level(
     surface: &dyn Surface,
     lattice: &Lattice,
@@ -488,19 +602,28 @@ fn stitch_level(
     reach: f32,
     res: Vec2,
 ) -> Level {
-    let t = lattice.tile(course, wale);
-    let at = |uv: Vec2| surface.eval_nearest(uv);
-    let centre = at(lattice.tile_center(course, wale));
-    let (p, n) = (centre.position, centre.normal);
-    let across = at(0.5 * (t.n1 + t.n2)).position - at(0.5 * (t.n0 + t.n3)).position;
-    let up = at(0.5 * (t.n0 + t.n1)).position - at(0.5 * (t.n2 + t.n3)).position;
-    let width = across.length();
-    // The tile's corners are within half its diagonal of the centre; the yarn stands off by
-    // at most `reach`; loops reach a third of a row beyond the tile.
-    let radius = 0.75 * (across.length() + up.length()) + reach;
+    // On the knit's own surface, found once for the views that see it.
+    let mut own: Option<StitchPlace> = None;
     let mut visible = false;
     let mut size: f32 = 0.0;
-    for view in &detail.views {
+    for (i, view) in detail.views.iter().enumerate() {
+        let posed;
+        let place = match detail.poses.of_view(i) {
+            Some(pose) => {
+                posed = StitchPlace::on(pose, lattice, course, wale, reach);
+                &posed
+            }
+            None => {
+                own.get_or_insert_with(|| StitchPlace::on(surface, lattice, course, wale, reach))
+            }
+        };
+        let StitchPlace {
+            p,
+            n,
+            across,
+            up,
+            radius,
+        } = *place;
         if detail.frustum_margin >= 0.0 && !in_frustum(view, p, radius, detail.frustum_margin) {
             continue;
         }
@@ -509,6 +632,7 @@ fn stitch_level(
         }
         visible = true;
         let cp = view.clip_from_object * p.extend(1.0);
+        let width = across.length();
         for d in [across, up, width * n] {
             size = size.max(projected_length(view, cp, p, d, res));
         }

@@ -298,14 +298,25 @@ class Camera:
     row-major); ``eyes``: (4,) or (F, 4), the eye in the surface's object space, ``(x, y, z,
     1)`` for a perspective camera, ``(dx, dy, dz, 0)`` towards an orthographic one;
     ``resolution``: (width, height) pixels. Several views (an animated camera's frames) model
-    each stitch for the view that sees it largest."""
+    each stitch for the view that sees it largest. ``poses``: the surface as each view sees
+    it, one per view (a deforming source sampled at each view's frame, with the knit's UV
+    layout), so that a part that moves into the frame or up to the camera during the
+    animation is built for the frame that sees it best; without them every view sees the
+    knit's own surface. A posed camera does not cull hidden yarn."""
 
     def __new__(
-        cls, matrices: npt.ArrayLike, eyes: npt.ArrayLike, resolution: tuple[int, int]
+        cls,
+        matrices: npt.ArrayLike,
+        eyes: npt.ArrayLike,
+        resolution: tuple[int, int],
+        poses: Sequence[GridSurface | MeshSurface] | None = None,
     ) -> Self: ...
     @property
     def views(self) -> int:
         """How many views (an animation's frames) the camera holds."""
+    @property
+    def posed(self) -> bool:
+        """Whether each view sees a pose of its own (``poses`` given)."""
     @property
     def resolution(self) -> tuple[int, int]:
         """(width, height) in pixels."""

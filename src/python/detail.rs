@@ -8,17 +8,20 @@ use numpy::{PyArrayDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 
 use super::ParameterError;
-use crate::detail::{CameraView, DetailParams, Level, LevelQuality};
+use crate::detail::{CameraView, DetailParams, Level, LevelQuality, ViewPoses};
 
 /// Camera views of a surface, for camera-driven detail: each view's clip-from-object matrix
 /// (`projection @ view @ world_from_object`, OpenGL clip conventions, row-major as numpy
 /// and Blender write matrices) and eye (`(x, y, z, 1)` position for a perspective camera,
 /// `(dx, dy, dz, 0)` unit direction towards an orthographic one), in the surface's object
 /// space; and the render resolution in pixels. Several views (an animated camera's frames)
-/// model each stitch for the view that sees it largest.
+/// model each stitch for the view that sees it largest. `poses`: the surface as each view
+/// sees it (a deforming source sampled at each view's frame), one per view; without them
+/// every view sees the knit's own surface.
 #[pyclass(name = "Camera", module = "knitwear", frozen)]
 pub struct PyCamera {
     pub(super) views: Vec<CameraView>,
+    pub(super) poses: ViewPoses,
     pub(super) resolution: (u32, u32),
 }
 
@@ -44,10 +47,12 @@ fn floats(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<usize>, Vec<f32>)
 #[pymethods]
 impl PyCamera {
     #[new]
+    #[pyo3(signature = (matrices, eyes, resolution, poses=None))]
     fn new(
         matrices: &Bound<'_, PyAny>,
         eyes: &Bound<'_, PyAny>,
         #[pyo3(from_py_with = super::int_pair_arg)] resolution: (i128, i128),
+        poses: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         // The core checks the range; here only what a u32 can hold.
         let resolution = (
@@ -75,8 +80,40 @@ impl PyCamera {
                     eye: Vec4::from_slice(&e[4 * i..4 * i + 4]),
                 }
             })
-            .collect();
-        Ok(Self { views, resolution })
+            .collect::<Vec<_>>();
+        let poses = match poses {
+            None => ViewPoses::default(),
+            Some(list) => {
+                let poses = list
+                    .try_iter()
+                    .map_err(|_| {
+                        ParameterError::new_err(
+                            "poses must be a sequence of surfaces, one per camera view",
+                        )
+                    })?
+                    .map(|s| super::surface::AnySurface::from_py(&s?).map(|s| s.shared()))
+                    .collect::<PyResult<Vec<_>>>()?;
+                if poses.len() != views.len() {
+                    return Err(ParameterError::new_err(format!(
+                        "a camera of {} view(s) takes one pose per view, not {}",
+                        views.len(),
+                        poses.len()
+                    )));
+                }
+                ViewPoses(poses)
+            }
+        };
+        Ok(Self {
+            views,
+            poses,
+            resolution,
+        })
+    }
+
+    /// Whether each view sees a pose of its own.
+    #[getter]
+    fn posed(&self) -> bool {
+        !self.poses.is_empty()
     }
 
     /// Number of views.
@@ -93,8 +130,13 @@ impl PyCamera {
 
     fn __repr__(&self) -> String {
         format!(
-            "Camera({} view(s), {} x {})",
+            "Camera({} view(s){}, {} x {})",
             self.views.len(),
+            if self.poses.is_empty() {
+                ""
+            } else {
+                " with poses"
+            },
             self.resolution.0,
             self.resolution.1
         )
@@ -182,7 +224,7 @@ pub(super) fn detail_from(
     seen_triangles: Option<Vec<u8>>,
 ) -> PyResult<Option<DetailParams>> {
     let pinned = stitch_levels.map(pinned_levels).transpose()?;
-    let (views, resolution) = match (camera, &pinned) {
+    let (views, poses, resolution) = match (camera, &pinned) {
         (None, None) if cull_hidden || seen_triangles.is_some() => {
             return Err(ParameterError::new_err(
                 "culling hidden yarn needs a camera (or the pinned stitch_levels and \
@@ -194,8 +236,12 @@ pub(super) fn detail_from(
                 "give a camera or pinned stitch_levels, not both",
             ))
         }
-        (Some(c), None) => (c.get().views.clone(), c.get().resolution),
-        (None, _) => (Vec::new(), (1, 1)),
+        (Some(c), None) => (
+            c.get().views.clone(),
+            c.get().poses.clone(),
+            c.get().resolution,
+        ),
+        (None, _) => (Vec::new(), ViewPoses::default(), (1, 1)),
     };
     let defaults = DetailParams::default();
     let (full_px, mid_px, texture_px) =
@@ -203,6 +249,7 @@ pub(super) fn detail_from(
     let no_view = views.is_empty() && pinned.is_none();
     let params = DetailParams {
         views,
+        poses,
         resolution,
         pinned,
         full_px,

@@ -124,6 +124,14 @@ impl AnySurface {
         }
     }
 
+    /// The surface, shared.
+    pub(crate) fn shared(&self) -> Arc<dyn Surface> {
+        match self {
+            AnySurface::Grid(g) => g.clone(),
+            AnySurface::Mesh(m) => m.clone(),
+        }
+    }
+
     pub(crate) fn as_dyn(&self) -> &dyn Surface {
         match self {
             AnySurface::Grid(g) => g.as_ref(),

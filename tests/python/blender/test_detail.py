@@ -85,6 +85,53 @@ def test_an_animated_camera_is_followed_over_the_frame_range(api: ModuleType) ->
     assert scene.frame_current == 1
 
 
+def test_a_deforming_source_is_built_for_the_frame_that_sees_each_part(
+    api: ModuleType, tmp_path: Path
+) -> None:
+    """A shape key slides the strip under a still camera over frames 1-10: its far end comes
+    into the frame only at the end. Each frame's view sees the source in that frame's pose,
+    so the far end is built; it used to be culled by the first frame's pose, and the knit,
+    following its source, left the end of the shot empty."""
+    source = strip()
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 10
+    camera((0.0, -0.2, 0.12), (0.0, -0.2, 0.0))  # looking down at the near end
+    still = api.knit(source, **STRIP)
+    source.shape_key_add(name="Basis")
+    slide = source.shape_key_add(name="Slide")
+    for point in slide.data:
+        point.co.y -= 0.4 / 0.6  # the strip is the unit plane scaled 0.6 along y
+    slide.value = 0.0
+    slide.keyframe_insert("value", frame=1)
+    slide.value = 1.0
+    slide.keyframe_insert("value", frame=10)
+    scene.frame_set(1)
+    moving = api.knit(source, **STRIP)
+    assert scene.frame_current == 1
+    assert moving.levels["culled"] < still.levels["culled"] // 2, (moving.levels, still.levels)
+    # At frame 10 the far end is under the camera, and the knit that follows it is there: it
+    # covers the frame as a knit built whole (Detail: Full) does.
+    whole = api.knit(source, detail_mode="FULL", **STRIP)
+    source.hide_render = True
+    scene.frame_set(10)
+    scene.render.engine = "BLENDER_WORKBENCH"
+    scene.render.resolution_x, scene.render.resolution_y = 192, 108
+
+    def covered(shown: bpy.types.Object, hidden: bpy.types.Object) -> np.ndarray:
+        shown.hide_render, hidden.hide_render = False, True
+        for other in (still.object,):
+            other.hide_render = True
+        scene.render.filepath = str(tmp_path / f"{shown.name}.png")
+        bpy.ops.render.render(write_still=True)
+        pixels = np.asarray(Image.open(scene.render.filepath).convert("RGB"), dtype=np.float32)
+        return np.abs(pixels - pixels[0, 0]).sum(axis=-1) > 30
+
+    full = covered(whole.object, moving.object)
+    seen = covered(moving.object, whole.object)
+    assert full.mean() > 0.3, full.mean()  # the strip fills the frame's middle
+    assert (seen & full).sum() >= 0.98 * full.sum(), (seen.mean(), full.mean())
+
+
 def test_stitches_below_a_few_pixels_are_left_to_the_knitwear_texture(api: ModuleType) -> None:
     source = strip()
     receding_camera()

@@ -127,6 +127,72 @@ def test_bad_cameras_and_pinned_levels_raise() -> None:
         knitwear.Knit(strip(), knitwear.Pattern.preset("garter"), stitch_levels=[7])
 
 
+def slid_strip(dy: float) -> knitwear.GridSurface:
+    """`strip` moved ``dy`` along y: the same (u,v) layout in another pose."""
+    u, v = np.meshgrid(np.linspace(0, 1, 8), np.linspace(0, 1, 32))
+    pos = np.stack([0.1 * u, 0.6 * v + dy, np.zeros_like(u)], axis=-1).astype(np.float32)
+    nrm = np.zeros_like(pos)
+    nrm[..., 2] = 1.0
+    return knitwear.GridSurface(pos, nrm)
+
+
+def overhead_camera(frames: int, poses: list | None = None) -> knitwear.Camera:
+    """Still, 12 cm over the strip's near end (y = 5 cm), ``frames`` times over."""
+    eye = np.array([0.05, 0.05, 0.12])
+    m = perspective(math.radians(40), RES[0] / RES[1], 0.01, 100) @ look_at(
+        eye, np.array([0.05, 0.05, 0.0]), np.array([0.0, 1.0, 0.0])
+    )
+    return knitwear.Camera([m] * frames, [[*eye, 1.0]] * frames, RES, poses=poses)
+
+
+def test_a_posed_camera_builds_each_part_for_the_frame_that_sees_it() -> None:
+    """A source that slides (or deforms) under a still camera: each view sees the surface in
+    its frame's pose, so the far end, which only the last frame brings under the camera, is
+    built; without the poses it was culled as the first frame's pose left it, and the
+    knit, following its source, showed nothing there."""
+    pattern = knitwear.Pattern.preset("stockinette")
+    still = knitwear.Knit(strip(), pattern, camera=overhead_camera(3))
+    lv_still = still.stitch_levels
+    courses = lv_still.shape[0]
+    # The still knit culls its far end: out of the frame.
+    assert (lv_still[-courses // 4 :] == 4).all()
+    assert (lv_still[: courses // 10] != 4).all()
+    # The strip slides 50 cm towards -y over three frames: its far end passes under the camera.
+    poses = [slid_strip(0.0), slid_strip(-0.25), slid_strip(-0.5)]
+    cam = overhead_camera(3, poses)
+    assert cam.posed and "with poses" in repr(cam)
+    moving = knitwear.Knit(strip(), pattern, camera=cam)
+    lv = moving.stitch_levels
+    assert (lv[-courses // 10 :] != 4).all(), "the far end, seen at the last frame, is built"
+    assert (lv[: courses // 10] != 4).all()
+    assert (lv == 4).sum() < (lv_still == 4).sum()
+    # A stitch between the frames' footprints is culled still: no view sees it.
+    assert (lv == 4).any()
+    # Poses that do not move give the unposed camera's levels, bit for bit.
+    same = knitwear.Knit(strip(), pattern, camera=overhead_camera(3, [strip()] * 3))
+    np.testing.assert_array_equal(same.stitch_levels, lv_still)
+
+
+def test_bad_poses_raise() -> None:
+    pattern = knitwear.Pattern.preset("garter")
+    with pytest.raises(knitwear.ParameterError, match="one pose per view"):
+        overhead_camera(2, [strip()])
+    with pytest.raises(knitwear.ParameterError, match="sequence of surfaces"):
+        overhead_camera(1, 3)  # type: ignore[arg-type]
+    with pytest.raises(knitwear.SurfaceError, match="GridSurface or knitwear.MeshSurface"):
+        overhead_camera(1, ["a surface"])  # type: ignore[list-item]
+    ring = np.stack(
+        np.meshgrid(np.linspace(0, 1, 8), np.linspace(0, 1, 32)) + [np.zeros((32, 8))], axis=-1
+    ).astype(np.float32)
+    up = np.zeros_like(ring)
+    up[..., 2] = 1.0
+    cyclic = knitwear.GridSurface(ring, up, cyclic_u=True)
+    with pytest.raises(knitwear.ParameterError, match="another \\(u,v\\) layout"):
+        knitwear.Knit(strip(), pattern, camera=overhead_camera(1, [cyclic]))
+    with pytest.raises(knitwear.ParameterError, match="cull_hidden"):
+        knitwear.Knit(strip(), pattern, camera=overhead_camera(1, [strip()]), cull_hidden=True)
+
+
 def test_hidden_yarn_is_culled_with_the_whole_knits_normals_and_can_be_pinned() -> None:
     pattern = knitwear.Pattern.preset("stockinette")
     cam = receding_camera()
