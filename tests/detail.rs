@@ -288,6 +288,115 @@ fn stitches_outside_the_frame_are_culled_unless_the_margin_covers_them() {
     assert!(both.stats.levels[Level::Culled as usize] < culled);
 }
 
+/// A surface moved by `offset`: the same (u,v) layout in another pose.
+struct Moved<S> {
+    inner: S,
+    offset: Vec3,
+}
+
+impl<S: Surface> Surface for Moved<S> {
+    fn domain(&self) -> knitwear::surface::UvRect {
+        self.inner.domain()
+    }
+    fn cyclic_u(&self) -> bool {
+        self.inner.cyclic_u()
+    }
+    fn cyclic_v(&self) -> bool {
+        self.inner.cyclic_v()
+    }
+    fn eval(&self, uv: glam::Vec2) -> Option<knitwear::surface::SurfacePoint> {
+        self.inner
+            .eval(uv)
+            .map(|p| knitwear::surface::SurfacePoint {
+                position: p.position + self.offset,
+                ..p
+            })
+    }
+    fn eval_nearest(&self, uv: glam::Vec2) -> knitwear::surface::SurfacePoint {
+        let p = self.inner.eval_nearest(uv);
+        knitwear::surface::SurfacePoint {
+            position: p.position + self.offset,
+            ..p
+        }
+    }
+    fn extent(&self) -> (f32, f32) {
+        self.inner.extent()
+    }
+}
+
+/// Each view measures the stitches on its own pose of the surface: a still camera over the
+/// strip's near end sees its far end once the strip has slid 50 cm under it, and only that.
+#[test]
+fn each_view_sees_the_surface_in_its_own_pose() {
+    let down = CameraView {
+        clip_from_object: perspective(50f32.to_radians(), 16.0 / 9.0, 0.01, 10.0)
+            * look_at(
+                Vec3::new(0.05, 0.05, 0.12),
+                Vec3::new(0.05, 0.05, 0.0),
+                Vec3::Y,
+            ),
+        eye: Vec3::new(0.05, 0.05, 0.12).extend(1.0),
+    };
+    let levels = |poses: Vec<std::sync::Arc<dyn Surface>>| {
+        let d = DetailParams {
+            poses: knitwear::detail::ViewPoses(poses),
+            ..detail(vec![down])
+        };
+        let prepared = PreparedKnit::new(&strip(), &stockinette(), &params(Some(d))).unwrap();
+        let levels = prepared.stitch_levels().unwrap().to_vec();
+        let courses = levels.len() / 20;
+        let culled = |rows: std::ops::Range<usize>| {
+            levels[rows.start * 20..rows.end * 20]
+                .iter()
+                .all(|&l| l == Level::Culled)
+        };
+        (
+            culled(0..courses / 10),
+            culled(courses - courses / 10..courses),
+        )
+    };
+    // The strip where it is: its near end seen, its far end not.
+    assert_eq!(levels(Vec::new()), (false, true));
+    let here: std::sync::Arc<dyn Surface> = std::sync::Arc::new(strip());
+    assert_eq!(levels(vec![here]), (false, true));
+    // Slid 50 cm towards -y: the far end under the camera, the near end out of the frame.
+    let slid: std::sync::Arc<dyn Surface> = std::sync::Arc::new(Moved {
+        inner: strip(),
+        offset: Vec3::new(0.0, -0.5, 0.0),
+    });
+    assert_eq!(levels(vec![slid.clone()]), (true, false));
+    // A pose per view: one pose for two views is refused, as is another (u,v) layout.
+    let two = DetailParams {
+        poses: knitwear::detail::ViewPoses(vec![slid]),
+        ..detail(vec![down, down])
+    };
+    let err = PreparedKnit::new(&strip(), &stockinette(), &params(Some(two))).unwrap_err();
+    assert!(
+        matches!(err, KnitError::Parameter(ref m) if m.contains("one pose per view")),
+        "{err}"
+    );
+    let wider: std::sync::Arc<dyn Surface> = std::sync::Arc::new(
+        GridSurface::new(
+            2,
+            2,
+            &[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0],
+            &[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0],
+            true,
+            false,
+        )
+        .unwrap(),
+    );
+    let other = DetailParams {
+        poses: knitwear::detail::ViewPoses(vec![wider]),
+        ..detail(vec![down])
+    };
+    let err = PreparedKnit::new(&strip(), &stockinette(), &params(Some(other))).unwrap_err();
+    assert!(
+        matches!(err, KnitError::Parameter(ref m) if m.contains("layout")),
+        "{err}"
+    );
+}
+
 /// A closed tube seen from the side: with back-face culling its far side is not built.
 #[test]
 fn back_faces_of_a_closed_surface_are_culled_when_asked() {
