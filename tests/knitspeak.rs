@@ -2166,3 +2166,70 @@ fn dashes_between_instructions_and_spelled_out_decreases_read() {
         same_cells,
     );
 }
+
+/// `Knit all stitches.`, `Purl every st.`: the whole row, as `Knit.` reads; `rep from *, end
+/// last rep k2`: the last repeat stops after its first two stitches, as `ending k2` reads.
+#[test]
+fn whole_rows_in_words_and_a_last_repeat_cut_short_read() {
+    all_read_as(
+        &[
+            "Row 1: Knit all stitches.\nRow 2: Purl all sts.",
+            "Row 1: Knit every stitch.\nRow 2: Purl each st.",
+            "Row 1: K across the row.\nRow 2: P to the end of the row.",
+        ],
+        &ks("Row 1: Knit.\nRow 2: Purl."),
+        same_cells,
+    );
+    let rib = ks("Row 1 (RS): *K2, p2; rep from *, ending k2.\nRow 2: P2, *k2, p2; rep from *.");
+    all_read_as(
+        &[
+            "Row 1 (RS): *K2, p2; rep from *, end last rep k2.\nRow 2: P2, *k2, p2; rep from *.",
+            "Row 1 (RS): *K2, p2; rep from *, ending last repeat with k2.\n\
+             Row 2: P2, *k2, p2; rep from *.",
+        ],
+        &rib,
+        same_cells,
+    );
+}
+
+/// `Work in St st.` (stockinette, stocking stitch) shows knit on the right side whichever
+/// side the row is worked from, and `Work in rev St st.` purl; `rep from beg` repeats the
+/// row so far, as `rep` with no star does.
+#[test]
+fn a_row_that_names_its_fabric_and_a_repeat_from_the_beginning_read() {
+    all_read_as(
+        &["Rows 1-4: Work in St st."],
+        &ks("Rows 1 and 3 (RS): Knit.\nRows 2 and 4: Purl."),
+        same_cells,
+    );
+    all_read_as(
+        &[
+            "Row 1 (RS): Knit.\nRow 2: Work in stockinette stitch.",
+            "Row 1 (RS): Work even in stocking stitch.\nRow 2: Purl.",
+        ],
+        &ks("Row 1 (RS): Knit.\nRow 2: Purl."),
+        same_cells,
+    );
+    all_read_as(
+        &["Row 1 (RS): Work in rev St st.\nRow 2: Work in reverse stockinette."],
+        &ks("Row 1 (RS): Purl.\nRow 2: Knit."),
+        same_cells,
+    );
+    // Set on the rows around it: garter below, stockinette above.
+    let mixed = ks("Rows 1-4: Knit.\nRows 5-8: Work in St st.");
+    let faces: Vec<char> = (0..8)
+        .map(|r| match mixed.stitch(r, 0).face {
+            knitwear::pattern::Face::Knit => 'k',
+            knitwear::pattern::Face::Purl => 'p',
+        })
+        .collect();
+    assert_eq!(faces.iter().collect::<String>(), "kpkpkkkk");
+    all_read_as(
+        &[
+            "Row 1 (RS): K4, p4; rep from beg.\nRow 2: K4, p4; rep from beginning of row.",
+            "Row 1 (RS): K4, p4; repeat from the beginning.\nRow 2: K4, p4, rep from beg to end.",
+        ],
+        &ks("Row 1 (RS): *K4, p4; rep from *.\nRow 2: *K4, p4; rep from *."),
+        same_cells,
+    );
+}

@@ -25,6 +25,40 @@ pub(super) enum Faces {
     Kept,
     /// Those of the row below, swapped (`k the purl sts and p the knit sts`).
     Swapped,
+    /// Every stitch showing this face on the right side, whichever side the row is worked
+    /// from (`Work in St st.`: knit from the right side, purled from the wrong side).
+    Shown(Face),
+}
+
+/// The face a row `Work in St st.` (or stockinette, stocking stitch) or `Work in rev St st.`
+/// shows on the right side, if its body says that.
+pub(super) fn fabric_named(body: &str) -> Option<Face> {
+    let lower = body.trim().trim_end_matches('.').trim().to_lowercase();
+    let lower = lower
+        .strip_prefix("work")
+        .map_or(lower.as_str(), str::trim_start);
+    let lower = lower.strip_prefix("even").map_or(lower, str::trim_start);
+    let lower = lower.strip_prefix("in").map_or(lower, str::trim_start);
+    let (purl, name) = match ["reverse ", "rev. ", "rev "]
+        .iter()
+        .find_map(|w| lower.strip_prefix(w))
+    {
+        Some(rest) => (true, rest),
+        None => (false, lower),
+    };
+    let name = name.trim();
+    let stockinette = [
+        "st st",
+        "st. st.",
+        "stst",
+        "stockinette",
+        "stockinette st",
+        "stockinette stitch",
+        "stocking st",
+        "stocking stitch",
+    ]
+    .contains(&name);
+    stockinette.then_some(if purl { Face::Purl } else { Face::Knit })
 }
 
 /// How a row's body says to take its faces from the row below, if it does: kept (any case
@@ -59,7 +93,21 @@ pub(super) fn as_they_appear(body: &str) -> Option<Faces> {
 /// the order laid out, bottom up) its stitches from the row below it (the last row's for the
 /// first). Rows of that kind stacked on each other take their faces in turn.
 pub(super) fn settle(faces: &[Faces], written: &mut [WrittenRow]) -> Result<()> {
-    let appear: Vec<bool> = faces.iter().map(|f| *f != Faces::Written).collect();
+    // A row that names its fabric shows that face whatever the row below shows.
+    for (row, f) in written.iter_mut().zip(faces) {
+        if let Faces::Shown(face) = *f {
+            let worked = if (face == Face::Knit) == row.right_side {
+                Instruction::Knit
+            } else {
+                Instruction::Purl
+            };
+            row.instructions.iter_mut().for_each(|i| *i = worked);
+        }
+    }
+    let appear: Vec<bool> = faces
+        .iter()
+        .map(|f| matches!(f, Faces::Kept | Faces::Swapped))
+        .collect();
     if !appear.contains(&true) {
         return Ok(());
     }
@@ -127,6 +175,17 @@ mod tests {
         }
         for text in ["Knit.", "K2, p2.", "Work in pattern.", "p the knit sts"] {
             assert_eq!(as_they_appear(text), None, "{text}");
+        }
+        for (text, face) in [
+            ("Work in St st.", Some(Face::Knit)),
+            ("Work even in stockinette stitch", Some(Face::Knit)),
+            ("Stocking stitch.", Some(Face::Knit)),
+            ("Work in rev St st.", Some(Face::Purl)),
+            ("reverse stockinette", Some(Face::Purl)),
+            ("Work in pattern.", None),
+            ("St st 4 rows.", None),
+        ] {
+            assert_eq!(fabric_named(text), face, "{text}");
         }
     }
 }

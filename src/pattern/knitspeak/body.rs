@@ -249,10 +249,27 @@ fn until(s: &str) -> Option<Until> {
         .map_or(s.to_string(), |r| format!("to {r}"));
     let s = s.as_str();
     match s {
-        "" | "to end" | "to the end" | "across" | "to end of row" | "to end of rnd"
-        | "to end of round" | "across row" | "all sts" | "all" | "around" | "all around" => {
-            return Some(Until::End)
-        }
+        ""
+        | "to end"
+        | "to the end"
+        | "across"
+        | "to end of row"
+        | "to end of rnd"
+        | "to end of round"
+        | "to the end of the row"
+        | "across row"
+        | "across the row"
+        | "all sts"
+        | "all stitches"
+        | "all the sts"
+        | "all the stitches"
+        | "every st"
+        | "every stitch"
+        | "each st"
+        | "each stitch"
+        | "all"
+        | "around"
+        | "all around" => return Some(Until::End),
         "to last st" | "to the last st" | "to last stitch" => return Some(Until::Last(1)),
         _ => {}
     }
@@ -736,16 +753,57 @@ impl BodyParser<'_> {
             return self.pass_over(t, slipped, els);
         }
         // `*k1, p1; rep from *, ending k1`: the stitches the row ends with, after its repeat.
+        // `end last rep k1` says the same: the last repeat stops after its first stitch.
         if matches!(els.last(), Some(El::RepEnd(..))) {
-            let ending = ["ending with ", "end with ", "ending ", "end "]
-                .iter()
-                .find_map(|w| lower.strip_prefix(w));
+            let ending = [
+                "ending last rep with ",
+                "ending last repeat with ",
+                "end last rep with ",
+                "end last repeat with ",
+                "ending last rep ",
+                "ending last repeat ",
+                "end last rep ",
+                "end last repeat ",
+                "ending with ",
+                "end with ",
+                "ending ",
+                "end ",
+            ]
+            .iter()
+            .find_map(|w| lower.strip_prefix(w));
             if let Some(rest) = ending {
                 self.instruction -= 1;
                 return self.text(rest, els, in_brackets);
             }
         }
         if let Some(rest) = after_repeat_from(lower) {
+            // `rep from beg`, `repeat from beginning of row`: the row so far is the repeat, as
+            // a `rep` that names no star reads.
+            let from = rest.trim_start();
+            let from = from.strip_prefix("from").map_or(from, str::trim_start);
+            let from = from.strip_prefix("the ").unwrap_or(from);
+            let from_start = ["beginning", "beg"]
+                .iter()
+                .find_map(|w| from.strip_prefix(w))
+                .filter(|r| r.is_empty() || r.starts_with([' ', '.', ',']))
+                .map(|r| {
+                    let r = r.trim_start_matches(['.', ',']).trim_start();
+                    [
+                        "of the row",
+                        "of row",
+                        "of the rnd",
+                        "of rnd",
+                        "of the round",
+                        "of round",
+                    ]
+                    .iter()
+                    .find_map(|w| r.strip_prefix(w))
+                    .unwrap_or(r)
+                });
+            if let Some(tail) = from_start {
+                let u = until(tail).ok_or_else(|| self.err(t, &repeat_end_refused(tail)))?;
+                return self.close_repeat(t, u, 0, els);
+            }
             // `rep from **`: the phrase read its first star.
             let more = rest.trim_start().len() - rest.trim_start().trim_start_matches('*').len();
             let stars = if rest.trim_start().starts_with('*') || lower.contains("from *") {

@@ -118,6 +118,7 @@ mod width_note;
 
 pub(crate) use layout::{lcm, normalised, shorter_way, wrap};
 
+use self::as_they_appear::Faces;
 use self::body::{parse_body, Body};
 use self::headers::{parse_header, RowSheet};
 use self::layout::{lay_out, RowPlan};
@@ -182,7 +183,9 @@ pub fn parse_knitspeak(text: &str) -> Result<StitchPattern> {
         }
         match same_as::same_as(body) {
             None => {
-                let parsed = match as_they_appear::as_they_appear(body) {
+                let faces = as_they_appear::as_they_appear(body)
+                    .or_else(|| as_they_appear::fabric_named(body).map(Faces::Shown));
+                let parsed = match faces {
                     Some(faces) => Body {
                         faces,
                         ..parse_body("Knit.", &what, &defined)?
