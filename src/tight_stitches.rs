@@ -16,6 +16,23 @@ use crate::surface::Surface;
 
 /// Fraction of the stitches narrower (shorter) than the one the shapes are tuned for.
 pub const TIGHT_QUANTILE: f32 = 0.05;
+
+/// The narrowest stitch the shapes are tuned for, in yarn diameters (never more than the mean
+/// stitch). No loop shape clears a stitch much narrower: on a flat patch tuned at 2, 2.5 and 3
+/// diameters wide the loops keep 0.50, 0.66 and 0.89 diameters apart. Shapes tuned for such a
+/// stitch crowd the wider ones too: a UV sphere of 42 wales at the default yarn has its 5%
+/// tightest stitches, by its poles, at 0.17 of the mean width (0.68 diameters); tuned for
+/// them, its yarn kept 1.085 diameters apart (1st percentile) round the equator and 0.995 at
+/// 30-60% of the way to the poles, where tuned at 2.5 diameters it keeps 1.201 and 1.072.
+/// The stitches narrower still collide either way; the report's stretch warning names them.
+pub const MIN_TUNED_WIDTH_DIAMETERS: f32 = 2.5;
+
+/// The stitch width the shapes are tuned for: the tight stitches' (`tight`), but at least
+/// [`MIN_TUNED_WIDTH_DIAMETERS`] yarn diameters (`diameter`, scene units) and never more
+/// than the `mean` stitch's.
+pub fn tuned_width(tight: f32, mean: f32, diameter: f32) -> f32 {
+    tight.max((MIN_TUNED_WIDTH_DIAMETERS * diameter).min(mean))
+}
 /// Most stitches measured: beyond, every k-th stitch in row-major order.
 const MAX_MEASURED: usize = 16_384;
 
@@ -182,6 +199,17 @@ mod tests {
         };
         let even = Lattice::regular(plane.domain(), 20, 24, false, false);
         assert_eq!(stitch_sizes(&plane, &even).spread.unwrap().stretched, 0.0);
+    }
+
+    #[test]
+    fn the_tuned_width_is_never_narrower_than_a_loop_can_clear() {
+        // A sphere's poles: tuned at 2.5 diameters, not at the tightest stitch.
+        assert_eq!(tuned_width(0.2, 1.0, 0.25), 0.625);
+        // Tight stitches wide enough keep their width.
+        assert_eq!(tuned_width(0.73, 1.0, 0.25), 0.73);
+        // A yarn too thick for its stitch: never wider than the mean.
+        assert_eq!(tuned_width(1.0, 1.0, 0.6), 1.0);
+        assert_eq!(tuned_width(0.5, 1.0, 0.6), 1.0);
     }
 
     #[test]

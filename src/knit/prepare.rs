@@ -185,6 +185,10 @@ impl PreparedKnit {
                 len_v / (courses as f32 + 2.0 * ROW_OVERHANG)
             },
         );
+        let yarn_width = p.stitch_size.map_or(mean.0, |s| s.0);
+        let radius = p
+            .yarn_radius
+            .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * yarn_width / widened);
         let mut stitch_spread = None;
         let (stitch_width, stitch_height) = match p.stitch_size {
             // A stitch larger than the whole surface knits no fabric: a unit mistake.
@@ -202,13 +206,12 @@ impl PreparedKnit {
                 crate::cancel::check()?;
                 stitch_spread = sizes.spread;
                 let (rw, rh) = sizes.tight;
-                (mean.0 * rw, mean.1 * rh)
+                (
+                    crate::tight_stitches::tuned_width(mean.0 * rw, mean.0, 2.0 * radius),
+                    mean.1 * rh,
+                )
             }
         };
-        let yarn_width = p.stitch_size.map_or(mean.0, |s| s.0);
-        let radius = p
-            .yarn_radius
-            .unwrap_or(DEFAULT_RADIUS_PER_STITCH_WIDTH * yarn_width / widened);
         // Against the mean stitch, pinned size or not: a knit rebuilt with its pinned
         // (tuned, tightest) stitch size must pass the check its first knit passed. On a
         // sphere the tightest stitches, at the poles, are a fraction of the mean.

@@ -118,7 +118,10 @@ def test_a_sphere_rebuilt_with_its_pinned_sizes_is_not_refused() -> None:
     tightest stitches' (at the poles), where the first knit checked it against the mean."""
     s = sphere()
     first = knitwear.Knit(s, knitwear.Pattern.preset("stockinette"), gauge=(22.0, 30.0))
-    assert first.stitch_size[0] < 2 * first.yarn_radius  # the poles' stitches are tiny
+    # The poles' stitches are a fraction of a yarn wide: the loops are tuned for the
+    # narrowest stitch a loop clears, 2.5 yarn diameters, not for them.
+    diameter = 2 * first.yarn_radius
+    assert first.stitch_size[0] == pytest.approx(2.5 * diameter, rel=1e-5)
     courses, wales = first.counts
     again = knitwear.Knit(
         s,
@@ -129,3 +132,14 @@ def test_a_sphere_rebuilt_with_its_pinned_sizes_is_not_refused() -> None:
         stitch_size=first.stitch_size,
     )
     assert np.array_equal(again.build(s).vertices, first.build(s).vertices)
+    # A pinned size narrower than the yarn (an older knit's, tuned for the poles) is checked
+    # against the mean stitch too, as its first knit was.
+    narrow = (0.5 * diameter, first.stitch_size[1])
+    knitwear.Knit(
+        s,
+        knitwear.Pattern.preset("stockinette"),
+        courses=courses,
+        wales=wales,
+        yarn_radius=first.yarn_radius,
+        stitch_size=narrow,
+    )
