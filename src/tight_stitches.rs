@@ -17,22 +17,30 @@ use crate::surface::Surface;
 /// Fraction of the stitches narrower (shorter) than the one the shapes are tuned for.
 pub const TIGHT_QUANTILE: f32 = 0.05;
 
-/// The narrowest stitch the shapes are tuned for, in yarn diameters (never more than the mean
-/// stitch). No loop shape clears a stitch much narrower: on a flat patch tuned at 2, 2.5 and 3
-/// diameters wide the loops keep 0.50, 0.66 and 0.89 diameters apart. Shapes tuned for such a
-/// stitch crowd the wider ones too: a UV sphere of 42 wales at the default yarn has its 5%
-/// tightest stitches, by its poles, at 0.17 of the mean width (0.68 diameters); tuned for
-/// them, its yarn kept 1.085 diameters apart (1st percentile) round the equator and 0.995 at
-/// 30-60% of the way to the poles, where tuned at 2.5 diameters it keeps 1.201 and 1.072.
-/// The stitches narrower still collide either way; the report's stretch warning names them.
-pub const MIN_TUNED_WIDTH_DIAMETERS: f32 = 2.5;
+/// The narrowest (and shortest) stitch the shapes are tuned for, in yarn diameters, never
+/// more than the mean stitch. No loop shape clears a much smaller stitch: a flat patch tuned
+/// at 2, 2.5 and 3 diameters wide (2.86 tall) keeps its loops 0.50, 0.66 and 0.90 diameters
+/// apart, and at 1.25, 1.5, 2 and 2.5 diameters tall (4 wide) 0.59, 0.70, 0.85 and 0.88.
+/// Shapes tuned for such a stitch crowd the larger ones too:
+/// - a UV sphere of 42 wales at the default yarn has its 5% narrowest stitches, by its poles,
+///   at 0.17 of the mean width (0.68 diameters); tuned for them, its yarn kept 1.085
+///   diameters apart (1st percentile) round the equator and 0.995 at 30-60% of the way to
+///   the poles; tuned 2.5 diameters wide, 1.201 and 1.072;
+/// - a sheet whose rows run from 0.2 to 1.8 of the mean height (v mapped quadratically) has
+///   its 5% shortest at 0.85 diameters; tuned for them, stockinette's rows of about the mean
+///   height kept 0.726 apart and C4's 0.418; tuned 2.5 diameters tall, 1.041 and 0.675, and
+///   the squeezed rows no closer (0.328 and 0.207, against 0.283 and 0.164).
+///
+/// The stitches smaller still collide either way; the report's stretch warning names them.
+pub const MIN_TUNED_DIAMETERS: f32 = 2.5;
 
-/// The stitch width the shapes are tuned for: the tight stitches' (`tight`), but at least
-/// [`MIN_TUNED_WIDTH_DIAMETERS`] yarn diameters (`diameter`, scene units) and never more
-/// than the `mean` stitch's.
-pub fn tuned_width(tight: f32, mean: f32, diameter: f32) -> f32 {
-    tight.max((MIN_TUNED_WIDTH_DIAMETERS * diameter).min(mean))
+/// One side of the stitch the shapes are tuned for: the tight stitches' (`tight`), but at
+/// least [`MIN_TUNED_DIAMETERS`] yarn diameters (`diameter`, scene units) and never more than
+/// the `mean` stitch's.
+pub fn tuned_side(tight: f32, mean: f32, diameter: f32) -> f32 {
+    tight.max((MIN_TUNED_DIAMETERS * diameter).min(mean))
 }
+
 /// Most stitches measured: beyond, every k-th stitch in row-major order.
 const MAX_MEASURED: usize = 16_384;
 
@@ -202,14 +210,14 @@ mod tests {
     }
 
     #[test]
-    fn the_tuned_width_is_never_narrower_than_a_loop_can_clear() {
+    fn the_tuned_stitch_is_never_smaller_than_a_loop_can_clear() {
         // A sphere's poles: tuned at 2.5 diameters, not at the tightest stitch.
-        assert_eq!(tuned_width(0.2, 1.0, 0.25), 0.625);
-        // Tight stitches wide enough keep their width.
-        assert_eq!(tuned_width(0.73, 1.0, 0.25), 0.73);
-        // A yarn too thick for its stitch: never wider than the mean.
-        assert_eq!(tuned_width(1.0, 1.0, 0.6), 1.0);
-        assert_eq!(tuned_width(0.5, 1.0, 0.6), 1.0);
+        assert_eq!(tuned_side(0.2, 1.0, 0.25), 0.625);
+        // Tight stitches large enough keep their size.
+        assert_eq!(tuned_side(0.73, 1.0, 0.25), 0.73);
+        // A yarn too thick for its stitch: never larger than the mean.
+        assert_eq!(tuned_side(1.0, 1.0, 0.6), 1.0);
+        assert_eq!(tuned_side(0.5, 1.0, 0.6), 1.0);
     }
 
     #[test]

@@ -206,10 +206,10 @@ impl PreparedKnit {
                 crate::cancel::check()?;
                 stitch_spread = sizes.spread;
                 let (rw, rh) = sizes.tight;
-                (
-                    crate::tight_stitches::tuned_width(mean.0 * rw, mean.0, 2.0 * radius),
-                    mean.1 * rh,
-                )
+                let tuned = |tight: f32, mean: f32| {
+                    crate::tight_stitches::tuned_side(tight, mean, 2.0 * radius)
+                };
+                (tuned(mean.0 * rw, mean.0), tuned(mean.1 * rh, mean.1))
             }
         };
         // Against the mean stitch, pinned size or not: a knit rebuilt with its pinned
