@@ -310,9 +310,10 @@ def detail_settings(
     cull_back = bool(settings["cull_back_faces"]) and _is_closed(
         source, context.evaluated_depsgraph_get()
     )
-    # The seen yarn is found for the source's pose now: a source that animates (and may
-    # deform) would show what was culled, so only a still source culls its hidden yarn.
-    cull_hidden = bool(settings["cull_hidden"]) and not source_animates
+    # Each frame's view finds the yarn it sees on the source in that frame's pose (the core
+    # builds the knit in each pose to look), so what an animated source shows later was
+    # built. Without the poses the pass would see the pose now only: then nothing is culled.
+    cull_hidden = bool(settings["cull_hidden"]) and (posed or not source_animates)
     return {
         "camera": camera_views,
         "detail_px": (

@@ -174,6 +174,7 @@ pub struct DetailParams {
     pub pinned: Option<Vec<Level>>,
     /// Cull the yarn hidden behind other yarn: keep only the triangles some view sees at a
     /// sample of its image ([`crate::visibility`]), the frame widened by `frustum_margin`.
+    /// With [`poses`](Self::poses) each view looks at the knit built in its own pose.
     /// Default: false.
     pub cull_hidden: bool,
     /// Visibility samples per pixel side for `cull_hidden` (1..=16). Default: 4 (16 samples a
@@ -362,13 +363,6 @@ impl DetailParams {
                 self.views.len(),
                 self.poses.len()
             )));
-        }
-        if !self.poses.is_empty() && self.cull_hidden {
-            return Err(KnitError::Parameter(
-                "culling hidden yarn finds what hides what in the knit's own pose, not in the \
-                 camera's poses: knit a source that deforms without cull_hidden"
-                    .into(),
-            ));
         }
         let (w, h) = self.resolution;
         if !(1..=65536).contains(&w) || !(1..=65536).contains(&h) {

@@ -372,8 +372,8 @@ pub const CULL_HIDDEN: Setting = Setting {
     addon_why: "the add-on knits for the scene's camera; a script may look from anywhere",
     doc: "Do not build the yarn that other yarn hides from the camera in every sampled \
           frame (most of a knit's triangles: the back of each strand, the loops behind the \
-          fabric). Applies while the source does not animate; a moving camera is followed \
-          over the frame range",
+          fabric). A moving camera is followed over the frame range, and a source that \
+          animates is seen in each sampled frame's pose",
     ..boolean("cull_hidden", "Cull Hidden Yarn", false)
 };
 

@@ -6,7 +6,7 @@ use glam::Vec3;
 use knitwear::detail::{CameraView, DetailParams};
 use knitwear::knit::{KnitOutput, KnitParams, PreparedKnit};
 use knitwear::pattern::StitchPattern;
-use knitwear::surface::PlaneSurface;
+use knitwear::surface::{PlaneSurface, Surface, SurfacePoint, UvRect};
 use knitwear::KnitError;
 
 mod common;
@@ -196,6 +196,103 @@ fn a_second_view_of_the_back_keeps_what_it_sees_too() {
     for i in 0..s.len() {
         assert_eq!(s[i], fs[i] | bs[i], "the views' union, byte {i}");
     }
+}
+
+/// The patch turned over, half a turn about the x axis: the same (u,v) layout with its back
+/// up, every coordinate exactly the patch's negated (no rounding).
+struct TurnedOver(PlaneSurface);
+
+impl TurnedOver {
+    fn turn(p: SurfacePoint) -> SurfacePoint {
+        let flip = |v: Vec3| Vec3::new(v.x, -v.y, -v.z);
+        SurfacePoint {
+            position: flip(p.position),
+            normal: flip(p.normal),
+        }
+    }
+}
+
+impl Surface for TurnedOver {
+    fn domain(&self) -> UvRect {
+        self.0.domain()
+    }
+    fn cyclic_u(&self) -> bool {
+        self.0.cyclic_u()
+    }
+    fn cyclic_v(&self) -> bool {
+        self.0.cyclic_v()
+    }
+    fn eval(&self, uv: glam::Vec2) -> Option<SurfacePoint> {
+        self.0.eval(uv).map(Self::turn)
+    }
+    fn eval_nearest(&self, uv: glam::Vec2) -> SurfacePoint {
+        Self::turn(self.0.eval_nearest(uv))
+    }
+    fn extent(&self) -> (f32, f32) {
+        self.0.extent()
+    }
+}
+
+/// Above the turned-over patch (y in [-0.08, 0]), looking down at its back.
+fn above_turned() -> CameraView {
+    view(Vec3::new(0.03, 0.06, 0.1), Vec3::new(0.03, -0.04, 0.0))
+}
+
+/// Issue 23: a source that deforms culls its hidden yarn too. Each view finds what it sees
+/// on the surface in its own pose, so a camera that sees the back of a piece once the body
+/// turns it over keeps the yarn of the back; it used to be refused (the pass looked at the
+/// knitted pose only, where that camera sees nothing of the patch).
+#[test]
+fn each_view_culls_the_yarn_hidden_in_its_own_pose() {
+    use std::sync::Arc;
+    let turned: Arc<dyn Surface> = Arc::new(TurnedOver(patch(0.08)));
+    let posed = |views: Vec<CameraView>, poses: Vec<Arc<dyn Surface>>| {
+        let mut p = params(views, true, 2);
+        p.detail.as_mut().unwrap().poses = knitwear::detail::ViewPoses(poses);
+        prepare(&p)
+    };
+    // What the view sees on the turned patch, pose given, is what a knit of the turned patch
+    // itself sees, bit for bit, and the culled mesh it builds in that pose is that knit's.
+    let in_pose = posed(vec![above_turned()], vec![turned.clone()]);
+    let direct = PreparedKnit::new(
+        &TurnedOver(patch(0.08)),
+        &stockinette(),
+        &params(vec![above_turned()], true, 2),
+    )
+    .unwrap();
+    assert_eq!(in_pose.seen_triangles(), direct.seen_triangles());
+    let (a, b) = (
+        in_pose.build(&*turned).unwrap(),
+        direct.build(&*turned).unwrap(),
+    );
+    assert_eq!(a.positions, b.positions);
+    assert_eq!(a.triangles, b.triangles);
+    let whole = a.stats.triangles + a.stats.triangles_hidden;
+    assert!(
+        a.stats.triangles * 10 < whole * 9 && a.stats.triangles * 5 > whole,
+        "{} of {whole} seen in the turned pose",
+        a.stats.triangles
+    );
+    // Found in the knitted pose instead (no poses), the same view keeps another set.
+    let unposed = prepare(&params(vec![above_turned()], true, 2));
+    assert_ne!(unposed.seen_triangles(), in_pose.seen_triangles());
+    // Views in different poses keep the union of what each sees in its own; views that share
+    // a pose are rasterised on one build of it.
+    let own: Arc<dyn Surface> = Arc::new(patch(0.08));
+    let front = prepare(&params(vec![above()], true, 2));
+    let both = posed(
+        vec![above(), above_turned(), above_turned()],
+        vec![own, turned.clone(), turned],
+    );
+    let (f, t, s) = (
+        front.seen_triangles().unwrap(),
+        in_pose.seen_triangles().unwrap(),
+        both.seen_triangles().unwrap(),
+    );
+    for i in 0..s.len() {
+        assert_eq!(s[i], f[i] | t[i], "the poses' union, byte {i}");
+    }
+    assert!(both.stats().triangles > front.stats().triangles.max(in_pose.stats().triangles));
 }
 
 #[test]

@@ -302,7 +302,8 @@ class Camera:
     it, one per view (a deforming source sampled at each view's frame, with the knit's UV
     layout), so that a part that moves into the frame or up to the camera during the
     animation is built for the frame that sees it best; without them every view sees the
-    knit's own surface. A posed camera does not cull hidden yarn."""
+    knit's own surface. With ``cull_hidden`` each view keeps the yarn it sees in its own
+    pose (the knit is built once per pose to find it)."""
 
     def __new__(
         cls,

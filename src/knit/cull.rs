@@ -8,6 +8,7 @@ use crate::geometry::MeshSubset;
 use crate::parallel::run_in_pool;
 use crate::surface::Surface;
 use crate::visibility::{seen_triangles, VisibilityPass};
+use std::sync::Arc;
 
 /// Packs one flag per triangle into bits, triangle `i` at bit `i % 8` of byte `i / 8`.
 pub(super) fn pack_bits(flags: &[bool]) -> Vec<u8> {
@@ -44,25 +45,29 @@ impl PreparedKnit {
             .as_ref()
             .map(|bits| unpack_bits(bits, whole))
             .transpose()?;
-        let (c, out, seen) = run_in_pool(self.params.threads, || {
-            let c = self.centrelines(surface);
-            let out = self.bundles(&c);
-            let seen = match pinned {
-                Some(seen) => seen,
-                None => seen_triangles(
-                    &out.positions,
-                    &out.triangles,
-                    &d.views,
-                    &VisibilityPass {
-                        resolution: d.resolution,
-                        supersampling: d.hidden_supersampling,
-                        margin: d.frustum_margin,
-                        budget_bytes: self.params.budget_bytes,
-                        yarn_radius: self.radius,
-                    },
-                )?,
-            };
-            Ok::<_, KnitError>((c, out, seen))
+        let pass = VisibilityPass {
+            resolution: d.resolution,
+            supersampling: d.hidden_supersampling,
+            margin: d.frustum_margin,
+            budget_bytes: self.params.budget_bytes,
+            yarn_radius: self.radius,
+        };
+        let (own, out, seen) = run_in_pool(self.params.threads, || match pinned {
+            Some(seen) => {
+                let c = self.centrelines(surface);
+                let out = self.bundles(&c);
+                Ok::<_, KnitError>((Some(c), out, seen))
+            }
+            None if d.poses.is_empty() => {
+                let c = self.centrelines(surface);
+                let out = self.bundles(&c);
+                let seen = seen_triangles(&out.positions, &out.triangles, &d.views, &pass)?;
+                Ok((Some(c), out, seen))
+            }
+            None => {
+                let (out, seen) = self.seen_in_poses(d, &pass)?;
+                Ok((None, out, seen))
+            }
         })??;
         // Nothing half made is kept for the first build.
         crate::cancel::check()?;
@@ -83,10 +88,47 @@ impl PreparedKnit {
             crate::geometry::stitch_seed(h, u64::from_le_bytes(word) as usize, 0x5345_454e)
         });
         self.hidden = Some(HiddenCulled { subset, seen: bits });
-        if d.pinned_seen.is_none() {
+        if let (Some(c), None) = (own, &d.pinned_seen) {
             self.first_build.keep(c, out);
         }
         Ok(())
+    }
+
+    /// The triangles each view sees on the surface in that view's pose (`d.poses`, not
+    /// empty), united, and the last pose's build (its topology is every pose's). Views that
+    /// share a pose (by identity) are rasterised over one build of it; the poses are built
+    /// one at a time in view order, so memory holds one build, and the union does not depend
+    /// on the order or the thread count.
+    fn seen_in_poses(
+        &self,
+        d: &DetailParams,
+        pass: &VisibilityPass,
+    ) -> Result<(KnitOutput, Vec<bool>)> {
+        let mut seen = vec![false; self.total.triangles as usize];
+        let mut last = None;
+        let mut done = vec![false; d.views.len()];
+        for i in 0..d.views.len() {
+            if done[i] {
+                continue;
+            }
+            crate::cancel::check()?;
+            let pose = &d.poses.0[i];
+            let views: Vec<_> = (i..d.views.len())
+                .filter(|&j| std::ptr::addr_eq(Arc::as_ptr(&d.poses.0[j]), Arc::as_ptr(pose)))
+                .inspect(|&j| done[j] = true)
+                .map(|j| d.views[j])
+                .collect();
+            let out = self.bundles(&self.centrelines(&**pose));
+            let in_pose = seen_triangles(&out.positions, &out.triangles, &views, pass)?;
+            for (s, v) in seen.iter_mut().zip(in_pose) {
+                *s |= v;
+            }
+            last = Some(out);
+        }
+        let out = last.ok_or_else(|| {
+            KnitError::Parameter("culling hidden yarn needs at least one camera view".into())
+        })?;
+        Ok((out, seen))
     }
 
     /// With `cull_hidden`: the triangles seen, one bit per triangle of the knit before
