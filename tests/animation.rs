@@ -201,3 +201,34 @@ fn bad_pinned_stitch_sizes_are_refused() {
         ));
     }
 }
+
+/// Issue 23: the knit's clearance in another pose, measured without building the bundles, is
+/// what a build in that pose measures; squashing the rows to 40% of their height pushes yarn
+/// through yarn, and the figure says so.
+#[test]
+fn the_clearance_in_any_pose_is_what_a_build_there_measures() {
+    // At the default gauge (the counts of `params` give rows twice as tall).
+    let p = KnitParams {
+        measure_clearance: true,
+        seed: 3,
+        ..Default::default()
+    };
+    let prepared = PreparedKnit::new(&rest(), &stockinette(), &p).unwrap();
+    let bent = sheet(1.2, false, |q| q, Mat3::IDENTITY);
+    let squashed = sheet(0.0, false, |q| q * Vec3::new(1.0, 0.4, 1.0), Mat3::IDENTITY);
+    let mut figures = Vec::new();
+    for surface in [rest(), bent, squashed] {
+        let c = prepared.clearance(&surface).unwrap();
+        let built = prepared.build(&surface).unwrap().stats.clearance.unwrap();
+        assert_eq!(c.0.to_bits(), built.0.to_bits());
+        assert_eq!(c.1.to_bits(), built.1.to_bits());
+        figures.push(c);
+    }
+    assert!(figures[0].0 > 0.7, "{figures:?}");
+    assert!(figures[2].0 < 0.5 && figures[2].1 < 0.5, "{figures:?}");
+    let other = sheet(0.0, true, |q| q, Mat3::IDENTITY);
+    assert!(matches!(
+        prepared.clearance(&other),
+        Err(KnitError::Surface(_))
+    ));
+}

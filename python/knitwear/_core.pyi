@@ -244,6 +244,10 @@ class Knit:
     def crossing_order(self, surface: GridSurface | MeshSurface) -> tuple[int, int, int]:
         """(decided, agree, undecided) crossings of the yarn on `surface`: at `agree` of the
         `decided` ones the yarn in front is the one the stitch pattern says."""
+    def clearance(self, surface: GridSurface | MeshSurface) -> tuple[float, float]:
+        """(min, 1st percentile) centreline clearance in yarn diameters of the knit's yarn on
+        `surface` (the knitted one, or it deformed): what `build(surface)` measures with
+        `measure_clearance`, without building the mesh. At 1 neighbouring yarns touch."""
     def positions(
         self,
         surface: GridSurface | MeshSurface,

@@ -77,6 +77,11 @@ pub(super) struct Centrelines {
 }
 
 impl Centrelines {
+    /// The sample points of every piece, concatenated in piece order (scene units).
+    pub(super) fn points(&self) -> &[Vec3] {
+        &self.points
+    }
+
     /// Bit for bit the same samples (so the same sweep).
     pub(super) fn same_as(&self, other: &Centrelines) -> bool {
         let same = |a: &[Vec3], b: &[Vec3]| {

@@ -6,6 +6,7 @@
 //! - `prepare`: [`PreparedKnit::new`] binds a knit to its surface's (u,v) layout once;
 //! - `cull`: the yarn no camera view sees, culled ([`PreparedKnit::seen_triangles`]);
 //! - `build`: [`PreparedKnit::build`] and the positions of a surface in any pose;
+//! - `pose_clearance`: the yarn's clearance in any pose ([`PreparedKnit::clearance`]);
 //! - `topology`: the skeleton measured (its (u,v) centrelines, the courses' interlock);
 //! - `output`: what comes back ([`KnitOutput`], [`KnitStats`]).
 
@@ -13,6 +14,7 @@ mod build;
 mod cull;
 mod output;
 mod params;
+mod pose_clearance;
 mod prepare;
 mod topology;
 

@@ -346,6 +346,15 @@ impl PyKnit {
         Ok((c.decided, c.agree, c.undecided))
     }
 
+    /// `(min, p01)` centreline clearance in yarn diameters of the knit's yarn on `surface`
+    /// (the knitted one, or it deformed): what `build(surface)` measures with
+    /// `measure_clearance`, without building the mesh. At 1 neighbouring yarns touch.
+    fn clearance(&self, py: Python<'_>, surface: &Bound<'_, PyAny>) -> PyResult<(f32, f32)> {
+        let surf = AnySurface::from_py(surface)?;
+        let knit = self.inner.clone();
+        guarded(py, move || knit.clearance(surf.as_dyn()))
+    }
+
     /// Vertex positions only, `(V, 3)` float32, for `surface` in a new pose: bit-identical
     /// to `build(surface).vertices`. With `out` (a writable C-contiguous float32 `(V, 3)`
     /// array) they are written there and `out` is returned: no allocation per frame. With

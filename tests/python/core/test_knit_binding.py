@@ -143,3 +143,36 @@ def test_a_sphere_rebuilt_with_its_pinned_sizes_is_not_refused() -> None:
         yarn_radius=first.yarn_radius,
         stitch_size=narrow,
     )
+
+
+def squashed_sheet(height: float) -> knitwear.GridSurface:
+    """`bent_sheet()` with its rows squashed (or stretched) to ``height`` of theirs."""
+    u, v = np.meshgrid(np.linspace(0, 1, 33), np.linspace(0, 1, 25))
+    pos = np.stack([0.1 * u, 0.08 * height * v, np.zeros_like(u)], axis=-1)
+    nrm = np.broadcast_to(np.array([0.0, 0.0, 1.0]), pos.shape)
+    return knitwear.GridSurface(
+        np.ascontiguousarray(pos, dtype=np.float32), np.ascontiguousarray(nrm, dtype=np.float32)
+    )
+
+
+def test_clearance_in_a_new_pose_is_the_builds_and_drops_as_the_rows_squash() -> None:
+    """Issue 23: `Knit.clearance` measures the yarn in any pose without building the mesh,
+    as `measure_clearance` measures the build there; rows squashed to 40% of their height
+    push yarn through yarn (at the default gauge)."""
+    bound = knitwear.Knit(bent_sheet(), knitwear.Pattern.preset("stockinette"), seed=5)
+    figures = []
+    for height in (1.0, 0.7, 0.4):
+        surface = squashed_sheet(height)
+        figure = bound.clearance(surface)
+        assert figure == knitwear.measure_clearance(bound.build(surface))
+        figures.append(figure)
+    assert figures[0][0] > 0.9, figures
+    assert figures[0][0] > figures[1][0] > figures[2][0], figures
+    assert figures[2][0] < 0.5, figures
+    pos = np.zeros((3, 3), np.float32)
+    pos[1, 0] = pos[2, 1] = 1.0
+    nrm = np.tile(np.array([0, 0, 1], np.float32), (3, 1))
+    uvs = np.array([[[0, 0], [0.5, 0], [0, 0.5]]], np.float32)
+    mesh = knitwear.MeshSurface(pos, nrm, np.array([[0, 1, 2]], np.int32), uvs)
+    with pytest.raises(knitwear.SurfaceError, match="layout"):
+        bound.clearance(mesh)
