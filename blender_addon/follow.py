@@ -36,6 +36,14 @@ class _Follower:
     tangents: np.ndarray
 
 
+@dataclass(frozen=True)
+class Followed:
+    """Where `follow` moved a knit: its binding, and its source's surface in that pose."""
+
+    knit: "knitwear.Knit"
+    surface: "knitwear.GridSurface | knitwear.MeshSurface"
+
+
 #: Bindings by knit object (`ID.session_uid`), rebuilt on demand and dropped on file load.
 _followers: dict[int, _Follower] = {}
 
@@ -83,11 +91,12 @@ def follow(
     context: bpy.types.Context | None = None,
     depsgraph: bpy.types.Depsgraph | None = None,
     normals: bool = True,
-) -> None:
+) -> Followed:
     """Move knit object ``obj``'s yarn to its source's pose in ``depsgraph`` (default: the
     context's): positions, and with ``normals`` the smooth normals (and, in a scene that
-    renders with Cycles, the fibre directions) that go with them, into the same mesh. Raises
-    `knitwear.KnitError` when the knit cannot follow (then nothing is changed)."""
+    renders with Cycles, the fibre directions) that go with them, into the same mesh. Returns
+    the binding and the surface it followed to. Raises `knitwear.KnitError` when the knit
+    cannot follow (then nothing is changed)."""
     context = context or bpy.context
     if not obj.knitwear.is_knit:
         raise knitwear.ParameterError(f"'{obj.name}' is not a knit: knit a surface first")
@@ -120,6 +129,7 @@ def follow(
     mesh_build.write_positions(obj.data, follower.positions)
     if obj.matrix_world != sampled.matrix:
         obj.matrix_world = sampled.matrix
+    return Followed(follower.knit, sampled.surface)
 
 
 def followers(scene: bpy.types.Scene) -> list[bpy.types.Object]:

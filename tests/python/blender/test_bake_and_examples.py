@@ -269,3 +269,57 @@ def test_a_baked_scene_packed_by_bat_renders_on_a_farm_without_the_extension(
     assert np.count_nonzero(artist[..., 3]) > 0.3 * artist[..., 3].size
     assert np.count_nonzero(np.abs(frames[1] - artist).max(axis=2)) > 0.05 * artist[..., 3].size
     np.testing.assert_array_equal(rendered, artist)
+
+
+def _squashing_plane(height: float) -> bpy.types.Object:
+    """A 10 x 8 cm plane whose shape key squashes it to ``height`` of its height at frame 3
+    and lets it go by frame 5."""
+    bpy.ops.mesh.primitive_plane_add(size=1.0)
+    source = bpy.context.active_object
+    source.scale = (0.10, 0.08, 1.0)
+    source.shape_key_add(name="Basis")
+    squash = source.shape_key_add(name="Squash")
+    for point in squash.data:
+        point.co.y *= height
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 5
+    for frame, value in ((1, 0.0), (3, 1.0), (5, 0.0)):
+        squash.value = value
+        squash.keyframe_insert("value", frame=frame)
+    scene.frame_set(1)
+    return source
+
+
+def test_the_bake_says_in_which_frames_yarn_passes_through_yarn(
+    api: ModuleType, addon: ModuleType, tmp_path: Path, capfd: pytest.CaptureFixture[str]
+) -> None:
+    """Issue 23: a surface that squashes its rows (an inner elbow) pushed yarn through yarn
+    and nothing said so. Squashed to 35% of its height at frame 3, a plane's knit passes
+    yarn through yarn there: the bake measures each frame and names the frames."""
+    knit = api.knit_object(_squashing_plane(0.35))
+    baked = addon.bake.bake_animation(
+        knit, frame_start=1, frame_end=5, filepath=str(tmp_path / "squash.pc2")
+    )
+    assert [c.frame for c in baked.clearance] == [1, 2, 3, 4, 5]
+    at = {c.frame: c for c in baked.clearance}
+    assert at[1].min > 0.7 and at[5].min == at[1].min, baked.clearance
+    assert at[3].min < at[2].min < at[1].min and at[3].min < 0.5, baked.clearance
+    bad = [c.frame for c in baked.passing_through()]
+    assert 3 in bad and 1 not in bad and 5 not in bad, baked.clearance
+    summary = baked.summary()
+    assert summary is not None and "at frame 3" in summary, summary
+    # The operator warns with it; without the check nothing is measured.
+    bpy.context.view_layer.objects.active = knit
+    capfd.readouterr()
+    assert bpy.ops.object.knitwear_bake(filepath=str(tmp_path / "op.pc2")) == {"FINISHED"}
+    assert summary in capfd.readouterr().out
+    quiet = addon.bake.bake_animation(
+        knit, frame_start=1, frame_end=5, filepath=str(tmp_path / "q.pc2"), check_clearance=False
+    )
+    assert quiet.clearance == [] and quiet.summary() is None
+    # Squashed to 90%, the rows still clear: the bake says nothing.
+    gentle = api.knit_object(_squashing_plane(0.9))
+    calm = addon.bake.bake_animation(
+        gentle, frame_start=1, frame_end=5, filepath=str(tmp_path / "calm.pc2")
+    )
+    assert len(calm.clearance) == 5 and calm.summary() is None, calm.clearance

@@ -166,7 +166,7 @@ def test_a_knit_with_every_stitch_left_to_the_texture_is_an_empty_knit_that_work
     assert bpy.ops.object.knitwear_update() == {"FINISHED"}
     cache = addon.bake.bake_animation(
         obj, frame_start=1, frame_end=3, filepath=str(tmp_path / "empty.pc2")
-    )
+    ).path
     _start, frames = addon.bake.read_pc2(cache)
     assert frames.shape == (3, 0, 3)
 

@@ -155,7 +155,7 @@ def test_the_pinned_yarn_survives_update_save_and_reload(
     assert after.shape == before.shape
     assert np.abs(after[:, 1]).max() > np.abs(before[:, 1]).max() * 1.02
     # And bakes.
-    cache = addon.bake.bake_animation(obj, frame_start=1, frame_end=3)
+    cache = addon.bake.bake_animation(obj, frame_start=1, frame_end=3).path
     _start, frames = addon.bake.read_pc2(cache)
     assert frames.shape == (3, len(obj.data.vertices), 3)
     np.testing.assert_array_equal(frames[1], after)
@@ -219,6 +219,18 @@ def _keyed_tilt(source: bpy.types.Object) -> None:
     source.rotation_euler.x = 0.0
 
 
+def _whole_and_culled(api: ModuleType, animate: Any) -> tuple[Any, Any]:
+    """The strip animated over frames 1-5 by ``animate``, knitted at frame 1 whole and culled
+    (one visibility sample a pixel, at the pixel centres `_render` samples)."""
+    source = _scene()
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 5
+    animate(source)
+    scene.frame_set(1)
+    whole = api.knit(source, cull_hidden=False, **STRIP)
+    return whole, api.knit(source, cull_hidden_samples=1, **STRIP)
+
+
 @pytest.mark.parametrize(
     "animate", [_keyed_tilt, _armature_bend, _scene_time_sway], ids=["keys", "armature", "nodes"]
 )
@@ -230,13 +242,8 @@ def test_a_source_that_animates_culls_only_what_no_frame_sees(
     source, renders as the whole knit does in every frame. (Issue 18: culled in its first
     pose only, a mesh bent by an armature showed holes in the others; culling was then left
     off for any source that animates, keys on it or not.)"""
-    source = _scene()
     scene = bpy.context.scene
-    scene.frame_start, scene.frame_end = 1, 5
-    animate(source)
-    scene.frame_set(1)
-    whole = api.knit(source, cull_hidden=False, **STRIP)
-    culled = api.knit(source, cull_hidden_samples=1, **STRIP)
+    whole, culled = _whole_and_culled(api, animate)
     assert culled.auto_detail and culled.levels == whole.levels
     assert culled.triangles + culled.triangles_hidden == whole.triangles
     assert culled.triangles_hidden > 0.1 * whole.triangles, (culled.triangles, whole.triangles)
@@ -329,3 +336,39 @@ def test_a_small_knit_keeps_its_hidden_yarn(api: ModuleType) -> None:
     report = operators._summary(kept)
     assert "hidden yarn kept" in report and "Cull From" in report, report
     assert "hidden yarn kept" not in operators._summary(culled)
+
+
+def test_a_culled_knit_bakes_with_normals_that_turn_with_it(
+    api: ModuleType, addon: ModuleType, tmp_path: Path
+) -> None:
+    """A baked cache carries no normals. A culled knit kept its rest pose's, which the keys
+    of a rigid motion turn but a deformation does not: bent by an armature, the baked knit
+    would light as at frame 1. It now shades with Blender's normals where it deforms, as a
+    whole knit's bake does, and renders as that bake does."""
+    scene = bpy.context.scene
+    whole, culled = _whole_and_culled(api, _armature_bend)
+    assert culled.object.data.has_custom_normals
+    for outcome in (whole, culled):
+        addon.bake.bake_animation(
+            outcome.object, frame_start=1, frame_end=5,
+            filepath=str(tmp_path / f"{outcome.object.name}.pc2"),
+            check_clearance=False,
+        )
+    assert not culled.object.data.has_custom_normals
+    scene.frame_set(5)
+    culled.object.hide_render, whole.object.hide_render = True, False
+    whole_baked = _render(tmp_path / "whole.png")
+    culled.object.hide_render, whole.object.hide_render = False, True
+    culled_baked = _render(tmp_path / "culled.png")
+    assert _ssim(culled_baked, whole_baked) > 0.98
+    # Moved rigidly (keys on the object), it keeps the whole knit's own: they turn with it.
+    tilted = _scene()
+    _keyed_tilt(tilted)
+    scene.frame_set(1)
+    rigid = api.knit(tilted, **STRIP)
+    assert rigid.triangles_hidden > 0
+    addon.bake.bake_animation(
+        rigid.object, frame_start=1, frame_end=5, filepath=str(tmp_path / "r.pc2"),
+        check_clearance=False,
+    )
+    assert rigid.object.data.has_custom_normals
