@@ -12,7 +12,7 @@ evaluating the object at a few frames of the range and comparing.
 import bpy
 import numpy as np
 
-from . import blender_compat
+from . import blender_compat, frame_handlers
 
 #: Modifiers that change the geometry with time by themselves.
 TIME_MODIFIERS = frozenset(
@@ -107,16 +107,17 @@ def _changes_over_range(obj: bpy.types.Object, context: bpy.types.Context) -> bo
         return False
     frame, subframe = scene.frame_current, scene.frame_subframe
     frames = sorted({int(round(f)) for f in np.linspace(start, end, PROBE_FRAMES)} - {frame})
-    try:
-        now = _pose(obj, context.evaluated_depsgraph_get())
-        for f in frames:
-            scene.frame_set(f)
-            other = _pose(obj, context.evaluated_depsgraph_get())
-            if other.shape != now.shape or not np.array_equal(other, now):
-                return True
-    finally:
-        if (scene.frame_current, scene.frame_subframe) != (frame, subframe):
-            scene.frame_set(frame, subframe=subframe)
+    with frame_handlers.paused():
+        try:
+            now = _pose(obj, context.evaluated_depsgraph_get())
+            for f in frames:
+                scene.frame_set(f)
+                other = _pose(obj, context.evaluated_depsgraph_get())
+                if other.shape != now.shape or not np.array_equal(other, now):
+                    return True
+        finally:
+            if (scene.frame_current, scene.frame_subframe) != (frame, subframe):
+                scene.frame_set(frame, subframe=subframe)
     return False
 
 

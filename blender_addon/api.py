@@ -35,6 +35,7 @@ import numpy as np
 from . import (
     animation,
     core_inputs,
+    frame_handlers,
     material,
     mesh_build,
     new_data,
@@ -281,21 +282,22 @@ def detail_settings(
     posed = pose is not None and source_animates and len(frames) > 1
     views = []
     poses = []
-    try:
-        for f in frames:
-            if f != scene.frame_current or len(frames) > 1:
-                scene.frame_set(f)
-            depsgraph = context.evaluated_depsgraph_get()
-            if posed:
-                assert pose is not None
-                sampled = pose(depsgraph)
-                poses.append(sampled.surface)
-                views.append(_camera_view(scene, source, depsgraph, sampled.origin))
-            else:
-                views.append(_camera_view(scene, source, depsgraph, origin))
-    finally:
-        if (scene.frame_current, scene.frame_subframe) != (frame, subframe):
-            scene.frame_set(frame, subframe=subframe)
+    with frame_handlers.paused():
+        try:
+            for f in frames:
+                if f != scene.frame_current or len(frames) > 1:
+                    scene.frame_set(f)
+                depsgraph = context.evaluated_depsgraph_get()
+                if posed:
+                    assert pose is not None
+                    sampled = pose(depsgraph)
+                    poses.append(sampled.surface)
+                    views.append(_camera_view(scene, source, depsgraph, sampled.origin))
+                else:
+                    views.append(_camera_view(scene, source, depsgraph, origin))
+        finally:
+            if (scene.frame_current, scene.frame_subframe) != (frame, subframe):
+                scene.frame_set(frame, subframe=subframe)
     r = scene.render
     resolution = (
         max(1, r.resolution_x * r.resolution_percentage // 100),

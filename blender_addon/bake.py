@@ -27,7 +27,7 @@ import bpy
 import knitwear
 import numpy as np
 
-from . import api, follow, mesh_build
+from . import api, follow, frame_handlers, mesh_build
 
 PC2_MAGIC = b"POINTCACHE2\0"
 CACHE_MODIFIER = "Knitwear Baked Animation"
@@ -176,7 +176,8 @@ def bake_animation(
     partial: Path | None = None
     try:
         partial = _partial_path(path)
-        with partial.open("wb") as handle:
+        # Other knits need not follow each baked frame: the frame they show is put back.
+        with partial.open("wb") as handle, frame_handlers.paused():
             write_pc2_header(handle, n, frame_start, frame_end - frame_start + 1)
             for frame in range(frame_start, frame_end + 1):
                 scene.frame_set(frame)
