@@ -148,10 +148,10 @@ def bake_animation(
     check_clearance: bool = True,
 ) -> Baked:
     """Bake knit ``obj``'s animation for frames ``frame_start..=frame_end``; return the cache
-    file and, with ``check_clearance``, each frame's clearance (about as much time again as
-    following the frame). Raises `knitwear.KnitError` (nothing is changed then) if the knit
-    cannot follow or the file cannot be written (a folder, a read-only place: the error names
-    the path)."""
+    file and, with ``check_clearance``, each frame's clearance (at 11k stitches about 0.4 s a
+    frame, against 0.24 s to follow and write it). Raises `knitwear.KnitError` (nothing is
+    changed then) if the knit cannot follow or the file cannot be written (a folder, a
+    read-only place: the error names the path)."""
     context = context or bpy.context
     if not obj.knitwear.is_knit:
         raise knitwear.ParameterError(f"'{obj.name}' is not a knit: knit a surface first")
@@ -255,7 +255,7 @@ class OBJECT_OT_knitwear_bake(bpy.types.Operator):
     check_clearance: bpy.props.BoolProperty(
         name="Check Clearance",
         description="Measure on every frame how close the yarn comes to other yarn, and warn "
-        "in which frames it passes through (about as much time again as the bake)",
+        "in which frames it passes through (the bake takes two to three times as long)",
         default=True,
     )
 
