@@ -118,6 +118,8 @@ impl PreparedKnit {
                 .inspect(|&j| done[j] = true)
                 .map(|j| d.views[j])
                 .collect();
+            // The previous pose's build goes before this one is made: one at a time.
+            drop(last.take());
             let out = self.bundles(&self.centrelines(&**pose));
             let in_pose = seen_triangles(&out.positions, &out.triangles, &views, pass)?;
             for (s, v) in seen.iter_mut().zip(in_pose) {
