@@ -9,6 +9,11 @@ extension's frame handler, exactly as it does for F12 or `blender -b file.blend 
     .venv/bin/python examples/animate.py --out out/sleeve                 # frames 1-24
     .venv/bin/python examples/animate.py --pattern seed --frames 1 48 --out out/sleeve
     .venv/bin/python examples/animate.py --engine eevee --still 12 --lens 60 --size 1200 600
+    .venv/bin/python examples/animate.py --bake --out out/sleeve   # and a PC2 cache for a farm
+
+With --bake the frames are also baked to OUT/sleeve.pc2 (Bake Knit Animation), and the bake's
+check of the yarn's clearance is printed frame by frame: the inner elbow squashes the rows,
+and the bake names the frames where yarn passes through yarn.
 """
 
 import argparse
@@ -36,6 +41,8 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--still", type=int, metavar="FRAME",
                         help="render only this frame, to OUT/still.png")
     parser.add_argument("--lens", type=float, default=35.0, help="camera focal length, mm")
+    parser.add_argument("--bake", action="store_true",
+                        help="also bake the frames to OUT/sleeve.pc2 and print its clearance check")
     return parser.parse_args()
 
 
@@ -194,6 +201,17 @@ def main() -> None:
         frames = last - first + 1
         print(f"animate: rendered {frames} frames to {args.out} in "
               f"{time.perf_counter() - t0:.1f} s")
+    if args.bake:
+        from bl_ext.user_default.knitwear import bake
+
+        t0 = time.perf_counter()
+        baked = bake.bake_animation(knit, frame_start=first, frame_end=last,
+                                    filepath=str((args.out / "sleeve.pc2").resolve()))
+        print(f"animate: baked frames {first}-{last} to {baked.path} in "
+              f"{time.perf_counter() - t0:.1f} s")
+        print("animate: clearance (min / 1st percentile, yarn diameters): " + ", ".join(
+            f"{c.frame}: {c.min:.2f} / {c.p01:.2f}" for c in baked.clearance))
+        print(f"animate: {baked.summary() or 'no yarn passes through yarn'}")
     blend = (args.out / "sleeve.blend").resolve()
     bpy.ops.wm.save_as_mainfile(filepath=str(blend))
     print(f"animate: saved {blend} (render any frame alone: blender -b {blend.name} -f N)")

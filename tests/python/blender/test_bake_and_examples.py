@@ -109,9 +109,12 @@ def test_the_animation_example_renders_a_bending_sleeve(tmp_path: Path) -> None:
 
     out = _run_example(
         "animate.py", "--frames", "1", "3", "--size", "96", "72", "--gauge", "6",
-        "--out", str(tmp_path),
+        "--out", str(tmp_path), "--bake",
     )
     assert "rendered 3 frames" in out
+    # The bake's check finds the inner elbow (bent 70 degrees at frame 2) squashing the rows.
+    assert (tmp_path / "sleeve.pc2").exists() and "baked frames 1-3" in out
+    assert "yarn passes through yarn in frame 2:" in out, out
     frames = sorted(tmp_path.glob("frame_*.png"))
     assert len(frames) == 3 and (tmp_path / "sleeve.blend").exists()
     straight, bent = (np.asarray(Image.open(frames[i]), np.float32) for i in (0, 1))
