@@ -68,11 +68,22 @@ class Baked:
         if not bad:
             return None
         worst = min(bad, key=lambda c: (c.min, c.frame))
+        down_to = (
+            f"clearance down to {worst.min:.2f} yarn diameters at frame {worst.frame} (loops "
+            f"overlap visibly under {api.MIN_CLEARANCE})"
+        )
+        if len(bad) == len(self.clearance):
+            # Not the animation's doing, most likely: the knit collides in its own pose.
+            return (
+                f"yarn passes through yarn in every baked frame: {down_to}; where it does so "
+                "in every pose, look at where its rows crowd (a sphere's poles) or at a yarn "
+                "thick for its stitch, before the animation"
+            )
+        best = max(c.min for c in self.clearance if c not in bad)
         return (
             f"yarn passes through yarn in frame{'s' if len(bad) > 1 else ''} "
-            f"{_frame_ranges([c.frame for c in bad])}: clearance down to {worst.min:.2f} yarn "
-            f"diameters at frame {worst.frame} (loops overlap visibly under "
-            f"{api.MIN_CLEARANCE}); the surface squashes or folds the rows there"
+            f"{_frame_ranges([c.frame for c in bad])}: {down_to}, against {best:.2f} at best "
+            "in the others; the surface squashes or folds the rows there"
         )
 
 

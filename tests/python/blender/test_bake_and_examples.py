@@ -320,9 +320,32 @@ def test_the_bake_says_in_which_frames_yarn_passes_through_yarn(
         knit, frame_start=1, frame_end=5, filepath=str(tmp_path / "q.pc2"), check_clearance=False
     )
     assert quiet.clearance == [] and quiet.summary() is None
+    assert f"against {at[1].min:.2f} at best in the others" in summary, summary
     # Squashed to 90%, the rows still clear: the bake says nothing.
     gentle = api.knit_object(_squashing_plane(0.9))
     calm = addon.bake.bake_animation(
         gentle, frame_start=1, frame_end=5, filepath=str(tmp_path / "calm.pc2")
     )
     assert len(calm.clearance) == 5 and calm.summary() is None, calm.clearance
+
+
+def test_a_knit_that_collides_in_every_frame_is_not_blamed_on_the_animation(
+    api: ModuleType, addon: ModuleType, tmp_path: Path
+) -> None:
+    """A UV sphere's rows keep their full count up to the poles, where the stitches collide
+    (clearance 0) in any pose: the bake says so for every frame, and points at the knit, not
+    at the surface's squash."""
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=32, ring_count=16, radius=0.05)
+    sphere = bpy.context.active_object
+    sphere.keyframe_insert("rotation_euler", frame=1)
+    sphere.rotation_euler.z = 1.0
+    sphere.keyframe_insert("rotation_euler", frame=2)
+    bpy.context.scene.frame_set(1)
+    knit = api.knit_object(sphere)
+    baked = addon.bake.bake_animation(
+        knit, frame_start=1, frame_end=2, filepath=str(tmp_path / "sphere.pc2")
+    )
+    assert all(c.min < 0.5 for c in baked.clearance), baked.clearance
+    summary = baked.summary()
+    assert summary is not None and "every baked frame" in summary, summary
+    assert "squashes" not in summary and "poles" in summary
