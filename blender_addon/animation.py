@@ -1,10 +1,12 @@
 """Whether an object moves or deforms over the scene's frame range.
 
-A knit culls its hidden yarn, and picks one camera frame, only for a source that stays as it
-is; a source that animates would later show what was never built. "Animates" is anything the
-depsgraph makes of it frame by frame, not only keys on the object itself: keys and drivers on
-it, its data or its shape keys; a parent; an armature, lattice, hook, curve or any other object
-a modifier or constraint reads (recursively); time-driven modifiers (wave, physics, caches).
+Auto detail models a knit for one camera frame only where neither the camera nor its source
+animates; for a source that animates it samples the source's pose at each camera frame it
+follows, so that what the source shows later (to the levels and to the hidden-yarn pass) was
+built. "Animates" is anything the depsgraph makes of it frame by frame, not only keys on the
+object itself: keys and drivers on it, its data or its shape keys; a parent; an armature,
+lattice, hook, curve or any other object a modifier or constraint reads (recursively);
+time-driven modifiers (wave, physics, caches).
 What no such rule can see (a Geometry Nodes tree reading the scene time) is caught by
 evaluating the object at a few frames of the range and comparing.
 """
