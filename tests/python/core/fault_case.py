@@ -246,6 +246,7 @@ def exercise(value: Any, args: list[Any], kwargs: dict[str, Any]) -> list[Any]:
         surface = args[0]
         r = value.build(surface)
         out += [r, value.positions(surface), value.crossing_order(surface)]
+        out.append(value.clearance(surface))
         out += [value.seen_triangles, value.topology_key]
         if kwargs.get("cull_hidden"):
             out.append(value.normals(surface))

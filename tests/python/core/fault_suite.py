@@ -188,7 +188,12 @@ def camera(draw: st.DrawFn) -> dict[str, Any]:
     eyes: Any = eye if views is None else [eye] * draw(st.sampled_from([views, views, 1, 5]))
     if draw(st.integers(0, 6)) == 0:
         eyes = draw(st.sampled_from([[], [0.0, 0.0, 1.0], [0.0] * 5, [[0.0] * 4] * 2]))
-    return {"$call": "Camera", "args": [{"$nd": mats}, eyes, resolution]}
+    made: dict[str, Any] = {"$call": "Camera", "args": [{"$nd": mats}, eyes, resolution]}
+    if views and draw(st.integers(0, 2)) == 0:
+        # The surface in each view's pose (a deforming source); a count that does not match.
+        count = draw(st.sampled_from([views, views, 1, views + 1]))
+        made["kwargs"] = {"poses": [GRID] * count}
+    return made
 
 
 @st.composite
