@@ -49,12 +49,16 @@ class FrameClearance:
 
 @dataclass(frozen=True)
 class Baked:
-    """What `bake_animation` wrote and measured."""
+    """What `bake_animation` wrote and measured. A path-like object: scripts written when
+    `bake_animation` returned the cache's `Path` can open it or pass it on as before."""
 
     #: The cache file.
     path: Path
     #: Each frame's clearance, in frame order; empty when not checked.
     clearance: list[FrameClearance] = field(default_factory=list)
+
+    def __fspath__(self) -> str:
+        return os.fspath(self.path)
 
     def passing_through(self) -> list[FrameClearance]:
         """The frames where yarn passes visibly through yarn (a minimum under
@@ -111,8 +115,9 @@ def write_pc2_header(handle: BinaryIO, points: int, start: int, samples: int) ->
     handle.write(PC2_MAGIC + _HEADER.pack(1, points, float(start), 1.0, samples))
 
 
-def read_pc2(path: Path) -> tuple[int, np.ndarray]:
+def read_pc2(path: "str | os.PathLike[str]") -> tuple[int, np.ndarray]:
     """(start frame, positions (samples, points, 3) float32) of a PC2 file."""
+    path = Path(path)
     data = path.read_bytes()
     if data[:12] != PC2_MAGIC:
         raise knitwear.ParameterError(f"{path} is not a PC2 point cache")

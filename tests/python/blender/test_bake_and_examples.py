@@ -320,6 +320,10 @@ def test_the_bake_says_in_which_frames_yarn_passes_through_yarn(
         knit, frame_start=1, frame_end=5, filepath=str(tmp_path / "q.pc2"), check_clearance=False
     )
     assert quiet.clearance == [] and quiet.summary() is None
+    # It still stands for the cache's path, as the Path it used to be.
+    assert Path(quiet) == quiet.path == tmp_path / "q.pc2"
+    _start, frames = addon.bake.read_pc2(quiet)
+    assert frames.shape == (5, len(knit.data.vertices), 3)
     assert f"against {at[1].min:.2f} at best in the others" in summary, summary
     # Squashed to 90%, the rows still clear: the bake says nothing.
     gentle = api.knit_object(_squashing_plane(0.9))
